@@ -1,0 +1,254 @@
+//! The one invariant checker, called after every operator in tests.
+
+use super::{next, prev, Mesh2, NONE};
+use crate::error::{MeshDefect, Result};
+use crate::geom::{orient2d, DVec2};
+use std::f64::consts::PI;
+
+impl Mesh2 {
+    /// Verifies every invariant of the mesh and reports the first defect found:
+    /// array lengths, index ranges, finite coordinates, strictly positive orientation (exact
+    /// predicate), symmetric adjacency that matches the shared edge, labels (an interior labelled
+    /// edge carries the same label on both sides), valid vertex seeds, no duplicate vertices, no
+    /// overlapping fans (angle sum at a vertex at most a full turn) and no hanging vertex inside a
+    /// boundary edge (conformity). Tombstoned triangles are skipped.
+    pub fn check(&self) -> Result<()> {
+        let nt = self.tris.len();
+        let np = self.points.len();
+        for (len, detail) in [
+            (
+                self.neighbours.len(),
+                "neighbour array length differs from triangle count",
+            ),
+            (
+                self.tri_ref.len(),
+                "sub-domain label array length differs from triangle count",
+            ),
+            (
+                self.edge_ref.len(),
+                "edge label array length differs from triangle count",
+            ),
+        ] {
+            if len != nt {
+                return Err(MeshDefect::BadLabel {
+                    tri: len.min(nt),
+                    detail,
+                }
+                .into());
+            }
+        }
+        for (len, detail) in [
+            (
+                self.vert_ref.len(),
+                "vertex label array length differs from vertex count",
+            ),
+            (
+                self.corner.len(),
+                "corner flag array length differs from vertex count",
+            ),
+            (
+                self.required.len(),
+                "required flag array length differs from vertex count",
+            ),
+            (
+                self.vert_tri.len(),
+                "vertex seed array length differs from vertex count",
+            ),
+        ] {
+            if len != np {
+                return Err(MeshDefect::BadVertexData {
+                    vertex: len.min(np),
+                    detail,
+                }
+                .into());
+            }
+        }
+        super::build::validate_elements(&self.points, &self.tris)?;
+        self.check_adjacency()?;
+        self.check_vertices()?;
+        self.check_fans()?;
+        self.check_hanging_vertices()?;
+        Ok(())
+    }
+
+    fn check_adjacency(&self) -> Result<()> {
+        for t in self.live_tris() {
+            for i in 0..3 {
+                let nb = self.neighbours[t][i];
+                if nb == NONE {
+                    continue;
+                }
+                let bad = |detail| -> Result<()> {
+                    Err(MeshDefect::BadAdjacency {
+                        tri: t,
+                        edge: i,
+                        detail,
+                    }
+                    .into())
+                };
+                if nb as usize >= self.tris.len() {
+                    return bad("neighbour index out of range");
+                }
+                if self.is_deleted(nb as usize) {
+                    return bad("neighbour is a deleted triangle");
+                }
+                let Some(j) = self.mirror_edge(t, nb as usize) else {
+                    return bad("neighbour does not point back (asymmetric adjacency)");
+                };
+                let [a, b] = self.edge_vertices(t, i);
+                let [c, d] = self.edge_vertices(nb as usize, j);
+                if !(a == d && b == c) {
+                    return bad("neighbour does not share this edge in opposite direction");
+                }
+                if self.edge_ref[t][i] != self.edge_ref[nb as usize][j] {
+                    return Err(MeshDefect::BadLabel {
+                        tri: t,
+                        detail: "an interior edge has different labels on its two sides",
+                    }
+                    .into());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn check_vertices(&self) -> Result<()> {
+        let mut referenced = vec![false; self.points.len()];
+        for t in self.live_tris() {
+            for &v in &self.tris[t] {
+                referenced[v as usize] = true;
+            }
+        }
+        for (v, &seed) in self.vert_tri.iter().enumerate() {
+            if seed == NONE {
+                if referenced[v] {
+                    return Err(MeshDefect::BadVertexData {
+                        vertex: v,
+                        detail: "vertex is used by a triangle but has no seed triangle",
+                    }
+                    .into());
+                }
+                continue;
+            }
+            let s = seed as usize;
+            if s >= self.tris.len() || self.is_deleted(s) || self.local_index(s, v as u32).is_none()
+            {
+                return Err(MeshDefect::BadVertexData {
+                    vertex: v,
+                    detail: "seed triangle does not contain the vertex",
+                }
+                .into());
+            }
+        }
+        // Duplicate coordinates: sort indices by (x, y).
+        let mut order: Vec<usize> = (0..self.points.len()).filter(|&v| referenced[v]).collect();
+        order.sort_unstable_by(|&a, &b| {
+            let (p, q) = (self.points[a], self.points[b]);
+            p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
+        });
+        for w in order.windows(2) {
+            if self.points[w[0]] == self.points[w[1]] {
+                return Err(MeshDefect::DuplicateVertex {
+                    first: w[0].min(w[1]),
+                    second: w[0].max(w[1]),
+                }
+                .into());
+            }
+        }
+        Ok(())
+    }
+
+    /// Every referenced vertex: its fan, walked from its seed, must reach every triangle that uses
+    /// it (a single manifold fan), and the angles around it must not exceed a full turn.
+    fn check_fans(&self) -> Result<()> {
+        let mut uses = vec![0u32; self.points.len()];
+        let mut angle = vec![0.0f64; self.points.len()];
+        for t in self.live_tris() {
+            let p = self.tri_points(t);
+            for i in 0..3 {
+                uses[self.tris[t][i] as usize] += 1;
+                let (e1, e2) = (p[next(i)] - p[i], p[prev(i)] - p[i]);
+                angle[self.tris[t][i] as usize] += e1.perp_dot(e2).atan2(e1.dot(e2));
+            }
+        }
+        for v in 0..self.points.len() {
+            if uses[v] == 0 {
+                continue;
+            }
+            let mut walked = 0u32;
+            self.for_each_fan_triangle(v as u32, |_| walked += 1);
+            if walked != uses[v] {
+                return Err(MeshDefect::BadVertexData {
+                    vertex: v,
+                    detail: "the triangles around the vertex do not form a single fan (non-manifold vertex)",
+                }
+                .into());
+            }
+            if angle[v] > 2.0 * PI * (1.0 + 1e-9) {
+                return Err(MeshDefect::OverlappingTriangles { vertex: v }.into());
+            }
+        }
+        Ok(())
+    }
+
+    /// Conformity: no boundary vertex lies strictly inside a boundary edge. Uses a uniform bucket
+    /// grid over the boundary edges, so the cost is about linear in the boundary size.
+    fn check_hanging_vertices(&self) -> Result<()> {
+        let edges = self.boundary_edges();
+        if edges.is_empty() {
+            return Ok(());
+        }
+        let mut bverts: Vec<u32> = edges.iter().flat_map(|e| [e.0, e.1]).collect();
+        bverts.sort_unstable();
+        bverts.dedup();
+        let (lo, hi) = bverts.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &v| {
+                (
+                    lo.min(self.points[v as usize]),
+                    hi.max(self.points[v as usize]),
+                )
+            },
+        );
+        let n = (edges.len() as f64).sqrt().ceil().max(1.0) as usize;
+        let size = (hi - lo).max(DVec2::splat(1e-300));
+        let cell = |p: DVec2| -> (usize, usize) {
+            let q = (p - lo) / size * n as f64;
+            (
+                (q.x.max(0.0) as usize).min(n - 1),
+                (q.y.max(0.0) as usize).min(n - 1),
+            )
+        };
+        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); n * n];
+        for &v in &bverts {
+            let (i, j) = cell(self.points[v as usize]);
+            buckets[j * n + i].push(v);
+        }
+        for &(a, b, _) in &edges {
+            let (pa, pb) = (self.points[a as usize], self.points[b as usize]);
+            let (i0, j0) = cell(pa.min(pb));
+            let (i1, j1) = cell(pa.max(pb));
+            // Long edges that span many cells are rare in valid meshes; cap the work per edge by
+            // scanning only the cells of its bounding box.
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    for &v in &buckets[j * n + i] {
+                        if v == a || v == b {
+                            continue;
+                        }
+                        let p = self.points[v as usize];
+                        if orient2d(pa, pb, p) == 0.0 && (p - pa).dot(p - pb) < 0.0 {
+                            return Err(MeshDefect::HangingVertex {
+                                vertex: v as usize,
+                                a: a as usize,
+                                b: b as usize,
+                            }
+                            .into());
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}

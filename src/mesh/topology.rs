@@ -1,0 +1,269 @@
+//! Pure topology on `Mesh2`: local indices, vertex fans and rings, patches, boundary edges,
+//! compaction. Nothing here reads coordinates.
+
+use super::{next, prev, Mesh2, NONE};
+
+impl Mesh2 {
+    /// Local index (0..3) of vertex `v` in triangle `t`, if it is a corner of it.
+    #[inline]
+    pub fn local_index(&self, t: usize, v: u32) -> Option<usize> {
+        self.tris[t].iter().position(|&w| w == v)
+    }
+
+    /// Local index in triangle `nb` of the edge it shares with triangle `t`.
+    #[inline]
+    pub fn mirror_edge(&self, t: usize, nb: usize) -> Option<usize> {
+        self.neighbours[nb].iter().position(|&w| w as usize == t)
+    }
+
+    /// The live triangles around vertex `v`, in counter-clockwise order. For a boundary vertex the
+    /// fan starts at the triangle whose edge leaving `v` counter-clockwise is on the boundary.
+    /// Returns an empty list for an unreferenced vertex.
+    pub fn vertex_fan(&self, v: u32) -> Vec<u32> {
+        let mut fan = Vec::with_capacity(8);
+        self.for_each_fan_triangle(v, |t| fan.push(t));
+        fan
+    }
+
+    /// Calls `f` on each live triangle around `v` (counter-clockwise), without allocating.
+    pub fn for_each_fan_triangle(&self, v: u32, mut f: impl FnMut(u32)) {
+        let seed = match self.vert_tri.get(v as usize) {
+            Some(&t) if t != NONE => t,
+            _ => return,
+        };
+        // Rotate clockwise to the start of an open fan (or back to the seed for a closed one).
+        let mut start = seed;
+        loop {
+            let i = match self.local_index(start as usize, v) {
+                Some(i) => i,
+                None => return,
+            };
+            // The edge (v, tri[next(i)]) is local edge prev(i); the triangle across it precedes us
+            // in counter-clockwise order.
+            let before = self.neighbours[start as usize][prev(i)];
+            if before == NONE {
+                break;
+            }
+            start = before;
+            if start == seed {
+                break;
+            }
+        }
+        let mut t = start;
+        loop {
+            f(t);
+            let i = match self.local_index(t as usize, v) {
+                Some(i) => i,
+                None => return,
+            };
+            // Counter-clockwise: cross the edge (v, tri[prev(i)]), which is local edge next(i).
+            let after = self.neighbours[t as usize][next(i)];
+            if after == NONE || after == start {
+                return;
+            }
+            t = after;
+        }
+    }
+
+    /// The vertices adjacent to `v` (its first ring), counter-clockwise, each once.
+    pub fn vertex_ring(&self, v: u32) -> Vec<u32> {
+        let mut ring = Vec::with_capacity(8);
+        let mut first = true;
+        self.for_each_fan_triangle(v, |t| {
+            let i = self.local_index(t as usize, v).unwrap_or(0);
+            let tri = self.tris[t as usize];
+            if first {
+                ring.push(tri[next(i)]);
+                first = false;
+            }
+            ring.push(tri[prev(i)]);
+        });
+        if ring.len() > 1 && ring.first() == ring.last() {
+            ring.pop();
+        }
+        ring
+    }
+
+    /// Whether vertex `v` is on the boundary (its fan is open).
+    pub fn is_boundary_vertex(&self, v: u32) -> bool {
+        let seed = self.vert_tri[v as usize];
+        if seed == NONE {
+            return false;
+        }
+        let mut boundary = false;
+        self.for_each_fan_triangle(v, |t| {
+            if let Some(i) = self.local_index(t as usize, v) {
+                let tt = t as usize;
+                if self.neighbours[tt][next(i)] == NONE || self.neighbours[tt][prev(i)] == NONE {
+                    boundary = true;
+                }
+            }
+        });
+        boundary
+    }
+
+    /// Flags of all boundary vertices, in one pass over the triangles.
+    pub fn boundary_vertex_flags(&self) -> Vec<bool> {
+        let mut flag = vec![false; self.points.len()];
+        for t in self.live_tris() {
+            for i in 0..3 {
+                if self.neighbours[t][i] == NONE {
+                    let [a, b] = self.edge_vertices(t, i);
+                    flag[a as usize] = true;
+                    flag[b as usize] = true;
+                }
+            }
+        }
+        flag
+    }
+
+    /// The vertices within `rings` edge-hops of `v`, excluding `v` itself, nearest rings first.
+    pub fn vertex_patch(&self, v: u32, rings: usize) -> Vec<u32> {
+        let mut seen = vec![v];
+        let mut frontier = vec![v];
+        for _ in 0..rings {
+            let mut next_frontier = Vec::new();
+            for &w in &frontier {
+                for u in self.vertex_ring(w) {
+                    if !seen.contains(&u) {
+                        seen.push(u);
+                        next_frontier.push(u);
+                    }
+                }
+            }
+            frontier = next_frontier;
+        }
+        seen.remove(0);
+        seen
+    }
+
+    /// Vertex-to-vertex adjacency of the whole mesh in compressed form: `(offsets, neighbours)`,
+    /// the ring of `v` being `neighbours[offsets[v]..offsets[v+1]]` (sorted ascending).
+    pub fn v2v(&self) -> (Vec<usize>, Vec<u32>) {
+        let n = self.points.len();
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(6 * self.tris.len());
+        for t in self.live_tris() {
+            let tri = self.tris[t];
+            for i in 0..3 {
+                let (a, b) = (tri[i], tri[next(i)]);
+                pairs.push((a, b));
+                pairs.push((b, a));
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut offsets = vec![0usize; n + 1];
+        for &(a, _) in &pairs {
+            offsets[a as usize + 1] += 1;
+        }
+        for v in 0..n {
+            offsets[v + 1] += offsets[v];
+        }
+        (offsets, pairs.into_iter().map(|(_, b)| b).collect())
+    }
+
+    /// The unique edges `(a, b)` with `a < b`, each with one triangle and local index holding it.
+    pub fn edges(&self) -> Vec<([u32; 2], u32, u8)> {
+        let mut out = Vec::with_capacity(3 * self.tris.len() / 2 + 8);
+        for t in self.live_tris() {
+            for i in 0..3 {
+                let nb = self.neighbours[t][i];
+                // Take each interior edge from the triangle with the smaller index.
+                if nb == NONE || (nb as usize) > t {
+                    let [a, b] = self.edge_vertices(t, i);
+                    out.push(([a.min(b), a.max(b)], t as u32, i as u8));
+                }
+            }
+        }
+        out
+    }
+
+    /// The boundary edges as `(a, b, label)`, oriented with the domain on their left.
+    pub fn boundary_edges(&self) -> Vec<(u32, u32, i32)> {
+        let mut out = Vec::new();
+        for t in self.live_tris() {
+            for i in 0..3 {
+                if self.neighbours[t][i] == NONE {
+                    let [a, b] = self.edge_vertices(t, i);
+                    out.push((a, b, self.edge_ref[t][i]));
+                }
+            }
+        }
+        out
+    }
+
+    /// The boundary as closed loops of vertex indices (each loop counter-clockwise for the outer
+    /// boundary, clockwise for holes). Loops are returned without repeating the first vertex.
+    pub fn boundary_loops(&self) -> Vec<Vec<u32>> {
+        let edges = self.boundary_edges();
+        let mut succ = std::collections::HashMap::with_capacity(edges.len());
+        for &(a, b, _) in &edges {
+            succ.insert(a, b);
+        }
+        let mut used = std::collections::HashSet::with_capacity(edges.len());
+        let mut loops = Vec::new();
+        for &(a, _, _) in &edges {
+            if used.contains(&a) {
+                continue;
+            }
+            let mut lp = Vec::new();
+            let mut v = a;
+            while used.insert(v) {
+                lp.push(v);
+                match succ.get(&v) {
+                    Some(&w) => v = w,
+                    None => break,
+                }
+            }
+            loops.push(lp);
+        }
+        loops
+    }
+
+    /// Removes deleted triangles and unreferenced vertices, renumbering everything. Returns the map
+    /// old vertex index -> new index (`NONE` for removed vertices).
+    pub fn compact(&mut self) -> Vec<u32> {
+        let mut used = vec![false; self.points.len()];
+        let live: Vec<usize> = self.live_tris().collect();
+        for &t in &live {
+            for &v in &self.tris[t] {
+                used[v as usize] = true;
+            }
+        }
+        let mut vmap = vec![NONE; self.points.len()];
+        let mut nv = 0u32;
+        for (v, &u) in used.iter().enumerate() {
+            if u {
+                vmap[v] = nv;
+                nv += 1;
+            }
+        }
+        let mut tmap = vec![NONE; self.tris.len()];
+        for (new, &t) in live.iter().enumerate() {
+            tmap[t] = new as u32;
+        }
+        fn keep<T: Copy>(v: &[T], flags: &[bool]) -> Vec<T> {
+            v.iter()
+                .zip(flags)
+                .filter_map(|(x, &f)| f.then_some(*x))
+                .collect()
+        }
+        self.points = keep(&self.points, &used);
+        self.vert_ref = keep(&self.vert_ref, &used);
+        self.corner = keep(&self.corner, &used);
+        self.required = keep(&self.required, &used);
+        let remap_t = |t: u32| if t == NONE { NONE } else { tmap[t as usize] };
+        self.tris = live
+            .iter()
+            .map(|&t| self.tris[t].map(|v| vmap[v as usize]))
+            .collect();
+        self.neighbours = live
+            .iter()
+            .map(|&t| self.neighbours[t].map(remap_t))
+            .collect();
+        self.tri_ref = live.iter().map(|&t| self.tri_ref[t]).collect();
+        self.edge_ref = live.iter().map(|&t| self.edge_ref[t]).collect();
+        self.rebuild_vertex_seeds();
+        vmap
+    }
+}
