@@ -1,1 +1,5 @@
-fn main() {}
+//! The `anisomesh` command line: a thin layer over the library.
+
+fn main() {
+    println!("anisomesh {}", env!("CARGO_PKG_VERSION"));
+}

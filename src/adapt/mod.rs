@@ -1,0 +1,1 @@
+//! Anisotropic mesh adaptation: metric-driven split, collapse, flip and smoothing.

@@ -1,0 +1,1 @@
+//! Characteristics-Galerkin advection and solution transfer.

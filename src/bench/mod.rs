@@ -1,0 +1,1 @@
+//! Benchmark flows: one file per benchmark, each returning a typed report.

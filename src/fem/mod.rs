@@ -1,0 +1,1 @@
+//! The finite element layer: quadrature, elements, assembly into CSR, solvers.

@@ -1,0 +1,1 @@
+//! Benchmark flow solvers (two-phase Stokes, ...).

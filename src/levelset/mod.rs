@@ -1,0 +1,3 @@
+//! Level-set functions: implicit shapes, zero-level extraction and measures, redistancing.
+
+pub mod redistance;

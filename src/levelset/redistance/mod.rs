@@ -1,0 +1,1 @@
+//! Level-set redistancing (geometric, PPR with oblique projection, fast marching).

@@ -1,0 +1,1 @@
+//! Tetrahedral meshes (3D), used by the redistancing work.
