@@ -1,1 +1,3 @@
 //! The finite element layer: quadrature, elements, assembly into CSR, solvers.
+
+pub mod lagrange;

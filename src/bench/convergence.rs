@@ -1,0 +1,1 @@
+//! Error versus vertex count: anisotropic, isotropic-adapted and uniform meshes on one shape.

@@ -1,0 +1,1 @@
+//! The two-phase Couette Stokes benchmark (004 §5.1).

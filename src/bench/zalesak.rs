@@ -1,0 +1,1 @@
+//! The Zalesak slotted-disk rotation (004 §5.1).

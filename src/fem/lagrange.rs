@@ -1,0 +1,1 @@
+//! Lagrange P1 and P2 elements on triangles and tetrahedra (shape functions, gradients, nodes).
