@@ -1,7 +1,9 @@
 //! Property tests of the metric mathematics (`anisomesh::metric`): intersection, log-Euclidean
 //! interpolation, bounding, edge length and `Q_ani` (004 §3.3–3.5). 256 random cases each.
 
-use anisomesh::metric::{edge_length, interpolate_log, intersect, lerp_log, q_ani, Sym2};
+use anisomesh::metric::{
+    edge_length, interpolate_log, intersect, lerp_log, max_form_ratio, q_ani, Sym2,
+};
 use anisomesh::DVec2;
 use proptest::prelude::*;
 
@@ -64,6 +66,27 @@ proptest! {
         prop_assert!(rel_diff(&intersect(&a, &b), &intersect(&b, &a)) < 1e-8);
     }
 
+    /// Nearly equal metrics (relative perturbation 1e-13 .. 1e-7): the intersection stays SPD,
+    /// close to both, and inside both.
+    #[test]
+    fn intersection_of_nearly_equal_metrics(a in spd(), d in prop::array::uniform3(-1.0..1.0f64), e in -13.0..-7.0f64) {
+        let eps = 10f64.powf(e) * a.norm();
+        let b = a.add(&Sym2::new(d[0], d[1], d[2]).scale(eps));
+        prop_assume!(b.is_spd());
+        let r = intersect(&a, &b);
+        prop_assert!(r.is_spd());
+        // In the reduction basis of `a`, r has the eigenvalues max(1, μ_i) where μ_i are those of
+        // b: so the largest generalised eigenvalue of r over a is max(1, that of b over a).
+        let tol = 1e-12 + 1e-14 * kappa(&a);
+        let (ra, ba) = (max_form_ratio(&a, &r), max_form_ratio(&a, &b));
+        prop_assert!((ra - ba.max(1.0)).abs() < tol, "{ra} vs {ba}");
+        prop_assert!(ra - 1.0 <= 3.0 * 10f64.powf(e) * kappa(&a) + tol);
+        // max_form_ratio itself is accurate to ~ε κ (it reduces by `r`).
+        let tol = 1e-12 + 1e-14 * kappa(&r);
+        prop_assert!(max_form_ratio(&r, &a) <= 1.0 + tol, "{}", max_form_ratio(&r, &a));
+        prop_assert!(max_form_ratio(&r, &b) <= 1.0 + tol, "{}", max_form_ratio(&r, &b));
+    }
+
     /// Log-Euclidean mean of equal metrics is that metric; `lerp_log` hits its endpoints.
     #[test]
     fn interpolation_of_equal_metrics(a in spd(), b in spd(), w in prop::collection::vec(0.01..5.0f64, 1..6)) {
@@ -73,7 +96,8 @@ proptest! {
         prop_assert!(rel_diff(&lerp_log(&a, &b, 1.0), &b) < 1e-10);
         let m = lerp_log(&a, &b, 0.5);
         prop_assert!(m.is_spd());
-        prop_assert!((m.det() / (a.det() * b.det()).sqrt() - 1.0).abs() < 1e-8);
+        let tol = 1e-12 + 1e-14 * (kappa(&a) + kappa(&b) + kappa(&m));
+        prop_assert!((m.det() / (a.det() * b.det()).sqrt() - 1.0).abs() < tol);
     }
 
     /// Bounding gives sizes in `[hmin, hmax]` and a size ratio at most `max_aniso`.
