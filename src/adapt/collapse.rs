@@ -66,7 +66,7 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     mesh.for_each_fan_triangle(b, |t| fan2.push(t));
     let in_ring_b = |w: u32| fan2.iter().any(|&t| mesh.tris[t as usize].contains(&w));
     let mut ok = true;
-    let (p_b, m_b) = (ctx.p(b), *ctx.m(b));
+    let (p_b, m_b, l_b) = (ctx.p(b), *ctx.m(b), ctx.logm[b as usize]);
     let mut q_old: f64 = 1.0;
     let mut q_new: f64 = 1.0;
     for &t in &ctx.fan {
@@ -87,7 +87,7 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
             ok = false;
             break;
         }
-        q_new = q_new.max(ctx.q_moved(tri, a, p_b, &m_b));
+        q_new = q_new.max(ctx.q_moved(tri, a, p_b, &l_b));
         // New edges b -> w must not be too long.
         for w in [tri[next(ia)], tri[prev(ia)]] {
             if w != apex[0] && w != apex[1] {
@@ -239,8 +239,7 @@ pub fn pass(ctx: &mut Ctx) -> usize {
             continue;
         }
         short.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
-        for k in 0..short.len() {
-            let b = short[k].1;
+        for &(_, b) in short.iter() {
             if let Some(plan) = check_loaded(ctx, a, b) {
                 apply(ctx, &plan);
                 ctx.vstamp[b as usize] = ctx.gen;

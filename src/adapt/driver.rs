@@ -82,7 +82,7 @@ impl AdaptOptions {
                 self.l_min, self.l_max
             )));
         }
-        if !(self.q_max >= 1.0) {
+        if self.q_max.is_nan() || self.q_max < 1.0 {
             return Err(Error::InvalidInput(format!(
                 "adapt: the quality floor q_max must be >= 1 (got {})",
                 self.q_max

@@ -82,9 +82,11 @@ pub fn apply(ctx: &mut Ctx, plan: &FlipPlan) {
     ctx.tstamp[t2u] = ctx.gen;
 }
 
-/// One flip sweep over all interior edges. Returns the number of flips.
+/// One flip sweep over the interior edges next to triangles modified since the last sweep. Returns the number of flips.
 pub fn pass(ctx: &mut Ctx) -> usize {
+    let since = ctx.last_flip;
     ctx.new_pass();
+    ctx.last_flip = ctx.gen;
     let nt = ctx.mesh.n_tris();
     let mut count = 0;
     for t in 0..nt {
@@ -94,6 +96,10 @@ pub fn pass(ctx: &mut Ctx) -> usize {
         for i in 0..3 {
             let nb = ctx.mesh.neighbours[t][i];
             if nb == NONE || (nb as usize) < t {
+                continue;
+            }
+            // Only edges next to a triangle modified since the last flip pass.
+            if ctx.tstamp[t] < since && ctx.tstamp[nb as usize] < since {
                 continue;
             }
             if let Some(plan) = check(ctx, t as u32, i) {

@@ -29,5 +29,5 @@ mod driver;
 pub mod sources;
 
 pub use driver::{adapt, AdaptOptions, AdaptReport, PassKind, PassReport};
-pub use sources::{MetricSource, NoSource};
+pub use sources::{AnalyticLevelSetSource, LevelSetMetric, MetricSource, NoSource};
 pub use topo::{Ctx, OpParams, VClass};

@@ -38,6 +38,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
     let mesh = &*ctx.mesh;
     let pv = ctx.p(v);
     let mv = *ctx.m(v);
+    let lv = ctx.logm[v as usize];
     let mut target = DVec2::ZERO;
     let mut q_old: f64 = 1.0;
     for &t in &ctx.fan {
@@ -72,7 +73,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
                 ok = false;
                 break;
             }
-            q_new = q_new.max(ctx.q_moved(tri, v, p, &mv));
+            q_new = q_new.max(ctx.q_moved(tri, v, p, &lv));
             if q_new >= q_old {
                 ok = false;
                 break;
@@ -105,20 +106,30 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     let vu = v as usize;
     ctx.mesh.points[vu] = plan.p;
     ctx.metric[vu] = m;
+    ctx.logm[vu] = m.log();
+    for &t in &ctx.fan {
+        ctx.tstamp[t as usize] = ctx.gen;
+    }
     for (f, &x) in ctx.fields.iter_mut().zip(&ctx.scratch_f) {
         f[vu] = x;
     }
 }
 
-/// One smoothing sweep over the free vertices. Returns the number of moves.
+/// One smoothing sweep over the free vertices whose ball changed since the last sweep. Returns the number of moves.
 pub fn pass(ctx: &mut Ctx) -> usize {
+    let since = ctx.last_smooth;
     ctx.new_pass();
+    ctx.last_smooth = ctx.gen;
     let mut count = 0;
     for v in 0..ctx.mesh.n_points() as u32 {
         if ctx.mesh.vert_tri[v as usize] == NONE {
             continue;
         }
         ctx.load_fan(v);
+        // Only vertices whose ball changed since the last smoothing pass.
+        if ctx.fan.iter().all(|&t| ctx.tstamp[t as usize] < since) {
+            continue;
+        }
         if let Some(plan) = check_loaded(ctx, v) {
             apply(ctx, &plan);
             count += 1;

@@ -165,8 +165,7 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<(f64, u32, u8)>) -> usize {
     }
     cand.sort_unstable_by(|x, y| y.0.total_cmp(&x.0));
     let mut count = 0;
-    for k in 0..cand.len() {
-        let (_, t, i) = cand[k];
+    for &(_, t, i) in cand.iter() {
         let tu = t as usize;
         if ctx.tstamp[tu] == ctx.gen {
             continue;

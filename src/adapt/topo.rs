@@ -42,6 +42,11 @@ pub struct Ctx<'a> {
     /// Per-vertex pass stamp.
     pub(crate) vstamp: Vec<u32>,
     pub(crate) gen: u32,
+    /// Logarithms of the vertex metrics (element metrics are `exp` of their mean).
+    pub(crate) logm: Vec<Sym2>,
+    /// Generation of the last flip / smoothing pass: only triangles modified since are examined.
+    pub(crate) last_flip: u32,
+    pub(crate) last_smooth: u32,
     pub(crate) fan: Vec<u32>,
     pub(crate) fan2: Vec<u32>,
     pub(crate) scratch_f: Vec<f64>,
@@ -59,6 +64,8 @@ impl<'a> Ctx<'a> {
     ) -> Ctx<'a> {
         let (nt, nv) = (mesh.n_tris(), mesh.n_points());
         let nf = fields.len();
+        use rayon::prelude::*;
+        let logm = metric.par_iter().map(|m| m.log()).collect();
         Ctx {
             mesh,
             metric,
@@ -68,6 +75,9 @@ impl<'a> Ctx<'a> {
             tstamp: vec![0; nt],
             vstamp: vec![0; nv],
             gen: 1,
+            logm,
+            last_flip: 0,
+            last_smooth: 0,
             fan: Vec::with_capacity(16),
             fan2: Vec::with_capacity(16),
             scratch_f: vec![0.0; nf],
@@ -76,12 +86,8 @@ impl<'a> Ctx<'a> {
 
     /// Starts a new pass: every stamp becomes stale.
     pub(crate) fn new_pass(&mut self) {
-        self.gen = self.gen.wrapping_add(1);
-        if self.gen == 0 {
-            self.tstamp.iter_mut().for_each(|s| *s = 0);
-            self.vstamp.iter_mut().for_each(|s| *s = 0);
-            self.gen = 1;
-        }
+        // 2^32 passes never happen in practice; saturate rather than wrap.
+        self.gen = self.gen.saturating_add(1);
     }
 
     #[inline]
@@ -103,15 +109,15 @@ impl<'a> Ctx<'a> {
     /// `Q_ani` of the triangle `(a, b, c)` at its current positions.
     #[inline]
     pub(crate) fn q(&self, tri: [u32; 3]) -> f64 {
-        kernel::q_ani(tri.map(|v| self.p(v)), tri.map(|v| self.m(v)))
+        kernel::q_ani_log(tri.map(|v| self.p(v)), tri.map(|v| &self.logm[v as usize]))
     }
 
-    /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with metric `mv`.
+    /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with log-metric `lv`.
     #[inline]
-    pub(crate) fn q_moved(&self, tri: [u32; 3], v: u32, pv: DVec2, mv: &Sym2) -> f64 {
+    pub(crate) fn q_moved(&self, tri: [u32; 3], v: u32, pv: DVec2, lv: &Sym2) -> f64 {
         let p = tri.map(|w| if w == v { pv } else { self.p(w) });
-        let m = tri.map(|w| if w == v { mv } else { self.m(w) });
-        kernel::q_ani(p, m)
+        let l = tri.map(|w| if w == v { lv } else { &self.logm[w as usize] });
+        kernel::q_ani_log(p, l)
     }
 
     /// Fills `self.fan` with the counter-clockwise fan of `v`.
@@ -169,6 +175,7 @@ impl<'a> Ctx<'a> {
         self.mesh.required.push(false);
         self.mesh.vert_tri.push(NONE);
         self.metric.push(m);
+        self.logm.push(m.log());
         for (f, &x) in self.fields.iter_mut().zip(&self.scratch_f) {
             f.push(x);
         }
