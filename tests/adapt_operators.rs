@@ -13,6 +13,7 @@ fn params() -> OpParams {
         l_min: std::f64::consts::FRAC_1_SQRT_2,
         l_max: std::f64::consts::SQRT_2,
         q_max: 5.0,
+        curve_tol: 0.0,
     }
 }
 

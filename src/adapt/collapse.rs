@@ -27,6 +27,14 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
             if ends[0] != b && ends[1] != b {
                 return None;
             }
+            // The curve must stay where it is: `a` within `curve_tol` of the new segment
+            // (other end, b); exactly collinear for the default tolerance 0.
+            let other = if ends[0] == b { ends[1] } else { ends[0] };
+            let (po, pa, pb) = (ctx.p(other), ctx.p(a), ctx.p(b));
+            let o = crate::geom::orient2d(po, pa, pb);
+            if o != 0.0 && o.abs() > ctx.params.curve_tol * (pb - po).length() {
+                return None;
+            }
         }
         VClass::Free => {}
     }

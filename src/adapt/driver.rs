@@ -22,6 +22,9 @@ pub struct AdaptOptions {
     /// Quality floor as a maximal `Q_ani`: collapses and moves may not create a worse triangle
     /// unless the ball was already worse (default 5).
     pub q_max: f64,
+    /// How far a boundary/interface vertex removed by a collapse may lie off the new segment
+    /// (absolute distance; default 0: polygonal curves keep their exact shape).
+    pub curve_tol: f64,
     /// Maximal number of split/collapse cycles (default 20).
     pub max_cycles: usize,
     /// Final flip + smoothing sweeps after the cycles (default 3).
@@ -36,6 +39,7 @@ impl Default for AdaptOptions {
             l_min: std::f64::consts::FRAC_1_SQRT_2,
             l_max: std::f64::consts::SQRT_2,
             q_max: 5.0,
+            curve_tol: 0.0,
             max_cycles: 20,
             final_sweeps: 3,
             check_each_pass: false,
@@ -57,6 +61,11 @@ impl AdaptOptions {
     /// Sets the quality floor (maximal `Q_ani`).
     pub fn q_max(mut self, v: f64) -> Self {
         self.q_max = v;
+        self
+    }
+    /// Sets the curve tolerance of collapses.
+    pub fn curve_tol(mut self, v: f64) -> Self {
+        self.curve_tol = v;
         self
     }
     /// Sets the cycle cap.
@@ -180,6 +189,7 @@ pub fn adapt(
         l_min: opts.l_min,
         l_max: opts.l_max,
         q_max: opts.q_max,
+        curve_tol: opts.curve_tol,
     };
     let mut rep = AdaptReport::default();
     {

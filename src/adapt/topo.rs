@@ -18,6 +18,10 @@ pub struct OpParams {
     /// Quality floor: an operation may not create a triangle with `Q_ani` above this unless the
     /// triangles it replaces were already worse.
     pub q_max: f64,
+    /// Distance a collapsing curve vertex may lie off the segment that replaces its two curve
+    /// edges (twice the area it removes, per unit length). 0: only exactly collinear vertices
+    /// of a boundary or interface curve are removed.
+    pub curve_tol: f64,
 }
 
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
