@@ -185,7 +185,7 @@ proptest! {
         }
         prop_assert_eq!(mesh.boundary_loops().len(), loops0);
         for c in corners0 {
-            prop_assert!(mesh.points.iter().any(|&p| p == c), "corner {} lost", c);
+            prop_assert!(mesh.points.contains(&c), "corner {} lost", c);
         }
         // The linear field is carried exactly (interpolation of a linear function).
         for (v, p) in mesh.points.iter().enumerate() {
