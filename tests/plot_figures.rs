@@ -30,15 +30,18 @@ fn assert_png(path: &std::path::Path, w: u32, h: u32) {
     assert_eq!(&bytes[12..16], b"IHDR");
     let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
     assert_eq!((be(16), be(20)), (w, h));
-    // No temporary file is left behind.
+    // No temporary file of this figure is left behind (other tests write beside it).
+    let prefix = format!(".{}.", path.file_name().unwrap().to_string_lossy());
     let leftovers = std::fs::read_dir(path.parent().unwrap())
         .unwrap()
         .filter(|e| {
-            e.as_ref()
+            let name = e
+                .as_ref()
                 .unwrap()
                 .file_name()
                 .to_string_lossy()
-                .contains(".tmp")
+                .into_owned();
+            name.starts_with(&prefix) && name.contains(".tmp")
         })
         .count();
     assert_eq!(leftovers, 0);
