@@ -11,8 +11,8 @@
 //!
 //! The three families:
 //! 1. **anisotropic**: the geometric metric of 004 eq. (6), `M = ∇u∇uᵀ/h_min² + |D²u|/ε`, with
-//!    exact derivatives of the shape, adapted by [`crate::adapt`] (evaluate → adapt rounds until
-//!    the vertex count settles). `ε` decreases over the sweep. The bounds are tied to `ε`:
+//!    exact derivatives of the shape, adapted by [`crate::adapt::adapt_to_shape`] (evaluate →
+//!    adapt rounds until the vertex count settles, default options). `ε` decreases over the sweep. The bounds are tied to `ε`:
 //!    `h_min = 0.1 √ε` (so `ε = 1e-4` gives the paper's `h_min = 0.001`, 004 §5.1), `h_max = 0.2`
 //!    (the paper's), maximal stretching `h_max / h_min` (the paper's 200 at `ε = 1e-4`), band
 //!    `|u| < 4 h_min` where eq. (6) applies, sizes growing at rate 0.3 outside it. A fixed
@@ -33,7 +33,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::adapt::{adapt, AdaptOptions, AnalyticLevelSetSource, LevelSetMetric, MetricSource};
+use crate::adapt::{adapt_to_shape, LevelSetMetric, ShapeAdaptOptions};
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::levelset::{
@@ -41,7 +41,6 @@ use crate::levelset::{
     shape_by_name, Shape,
 };
 use crate::mesh::{GridPattern, Mesh2};
-use crate::metric::Sym2;
 use crate::plot::{fit_loglog_slope, loglog_rgb, LogLogPlot, RgbImage, Series, SeriesStyle};
 
 /// Options of [`run`] (the CLI `anisomesh convergence --shape ...` maps onto these).
@@ -238,8 +237,8 @@ pub fn domain_of(shape: &str) -> Result<(DVec2, DVec2)> {
 /// Full: `points` values of `ε` log-spaced from `1e-2` to `1e-4` (the last one gives the paper's
 /// `h_min = 0.001`); grids halving from 800 cells per side on Zalesak (641,601 vertices, the
 /// uniform mesh quoted in issue 3) and from 512 on the circle and the flower.
-/// Quick: `min(points, 3)` values from `1e-2` in steps of `10^{-1/2}`, and as many grids up to
-/// 128 cells (Zalesak 256).
+/// Quick: `min(points, 3)` values from `1e-2` in steps of `10^{-1/2}`, and three grids of 32 to
+/// 128 cells (Zalesak 64 to 256).
 pub fn sweep(shape: &str, points: usize, quick: bool) -> Result<(Vec<f64>, Vec<usize>)> {
     if points < 2 {
         return Err(Error::InvalidInput(format!(
@@ -266,7 +265,7 @@ pub fn sweep(shape: &str, points: usize, quick: bool) -> Result<(Vec<f64>, Vec<u
         (false, true) => 800,
         (false, false) => 512,
     };
-    let n_grids = if quick { points.min(3) } else { points };
+    let n_grids = if quick { 3 } else { points };
     let mut cells: Vec<usize> = (0..n_grids).map(|k| top >> k).filter(|&c| c >= 4).collect();
     cells.reverse();
     Ok((eps, cells))
@@ -288,45 +287,20 @@ pub fn metric_for(eps: f64, isotropic: bool) -> LevelSetMetric {
     }
 }
 
-/// `(u, ∇u, D²u)` of the shape's distance.
-fn derivatives(shape: &dyn Shape, p: DVec2) -> (f64, DVec2, Sym2) {
-    (shape.distance(p), shape.gradient(p), shape.hessian(p))
-}
-
-/// A mesh of `domain` adapted to the zero level of `shape` with the metric `lm`: from a 20 x 20
-/// union-jack grid, rounds of "evaluate eq. (6) exactly at the vertices, [`adapt`] with the
-/// analytic source" until the vertex count changes by less than 2% (at most 6 rounds). Returns
-/// the mesh and whether the last round converged.
+/// A mesh of `domain` adapted to the zero level of `shape` with the metric `lm`, by
+/// [`adapt_to_shape`] with its default rounds, tolerance and gradation. Returns the mesh and
+/// whether the rounds settled.
 fn adapted_mesh(
     shape: &dyn Shape,
     domain: (DVec2, DVec2),
     lm: LevelSetMetric,
 ) -> Result<(Mesh2, bool)> {
-    lm.validate()?;
-    let mut mesh = Mesh2::rectangle(domain.0, domain.1, 20, 20, GridPattern::UnionJack)?;
-    let src = AnalyticLevelSetSource::new(|p: DVec2| derivatives(shape, p), lm);
-    let opts = AdaptOptions::default();
-    let mut prev = mesh.n_points();
-    let mut converged = false;
-    for _ in 0..6 {
-        let (mut metric, u) = src.evaluate(&mesh);
-        let mut fields = vec![u];
-        let rep = adapt(
-            &mut mesh,
-            &mut metric,
-            &mut fields,
-            Some(&src as &dyn MetricSource),
-            &opts,
-        )?;
-        let n = mesh.n_points();
-        let change = (n as f64 - prev as f64).abs() / n.max(1) as f64;
-        prev = n;
-        if rep.converged && change < 0.02 {
-            converged = true;
-            break;
-        }
-    }
-    Ok((mesh, converged))
+    let opts = ShapeAdaptOptions {
+        metric: lm,
+        ..ShapeAdaptOptions::default()
+    };
+    let (mesh, _u, rep) = adapt_to_shape(shape, domain, &opts)?;
+    Ok((mesh, rep.converged))
 }
 
 /// The interface measures of the nodal interpolant of `shape`'s distance on `mesh`:
