@@ -1,0 +1,36 @@
+//! Command definitions (clap) and dispatch. Each command lives in its own file and only calls
+//! the library's public API.
+
+mod info;
+
+use anisomesh::Result;
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Anisotropic mesh adaptation around level-set interfaces.
+#[derive(Debug, Parser)]
+#[command(name = "anisomesh", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
+    Info {
+        /// The mesh file.
+        file: PathBuf,
+        /// A metric (.sol, symmetric tensors at vertices) to measure edge lengths and Q_ani in.
+        #[arg(long)]
+        sol: Option<PathBuf>,
+    },
+}
+
+/// Runs the parsed command; with no command, the default adaptation job.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Some(Command::Info { file, sol }) => info::run(&file, sol.as_deref()),
+        None => info::run(std::path::Path::new("meshes/square.mesh"), None),
+    }
+}
