@@ -1,1 +1,33 @@
-//! Characteristics-Galerkin advection and solution transfer.
+//! Characteristics-Galerkin advection and solution transfer (004 §2.2, §3.5, §5.1).
+//!
+//! - [`characteristics`]: feet of the characteristics `X^n(x)` (Euler, midpoint, RK4, sub-steps)
+//!   and point location by walking;
+//! - [`evaluate`]: evaluation of a P1 field at a located point (P1 or limited quadratic);
+//! - [`galerkin`]: one step `u^{n+1} = u^n ∘ X^n`, nodal or L2-projected (004 eq. (2));
+//! - [`transfer`]: interpolation and conservative projection between meshes;
+//! - [`mass_correction`]: constant shift restoring the enclosed area (004 §5.1);
+//! - [`fixed_point`]: the transient fixed-point adaptation over a period (004 §3.5).
+
+pub mod characteristics;
+pub mod evaluate;
+pub mod fixed_point;
+pub mod galerkin;
+pub(crate) mod interim;
+pub mod mass_correction;
+pub mod transfer;
+
+pub use characteristics::{foot, FootOptions, FootScheme, Rotation, Velocity};
+pub use evaluate::{Derivatives, FieldEvaluator, Inflow, Interpolation};
+pub use fixed_point::{advance_period, Adapter, FixedPointOptions, IdentityAdapter, PeriodResult};
+pub use galerkin::{advect, AdvectOptions, Form};
+pub use mass_correction::{correct_mass, MassCorrection};
+
+/// Exact area of `{u < 0}` of a P1 field (until `levelset::interface::enclosed_area` lands).
+pub fn enclosed_area(mesh: &crate::Mesh2, u: &[f64]) -> f64 {
+    interim::enclosed_area(mesh, u)
+}
+
+/// Exact length of the zero level of a P1 field (until `levelset::interface` lands).
+pub fn interface_length(mesh: &crate::Mesh2, u: &[f64]) -> f64 {
+    interim::interface_length(mesh, u)
+}

@@ -20,11 +20,13 @@
 //! `quality.rs`): the adjacency code never looks at coordinates.
 
 mod build;
+mod cdt;
 mod check;
 mod grid;
 mod locate;
 mod topology;
 
+pub use cdt::{circle_points, from_polygon, DomainLoop, LoopKind, PolygonDomain};
 pub use grid::GridPattern;
 pub use locate::Location;
 

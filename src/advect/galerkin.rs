@@ -1,0 +1,189 @@
+//! Characteristics-Galerkin advection of a P1 field (004 §2.2, eq. (2)).
+//!
+//! One step maps `u^n` on the old mesh to `u^{n+1}(x) = u^n(X^n(x))` on the new mesh, where
+//! `X^n(x)` is the foot of the characteristic through `x` ([`super::characteristics`]). Two
+//! forms:
+//! - **nodal**: `u^{n+1}_i = u^n(X^n(x_i))` at every vertex `x_i` of the new mesh;
+//! - **L2-projected** (004 eq. (2)): `∫ u^{n+1} φ_i = ∫ (u^n ∘ X^n) φ_i` for every P1 basis
+//!   function, the right-hand side integrated on each new element with a degree-4 rule (after
+//!   optional uniform subdivision), locating the foot of each quadrature point; the mass matrix
+//!   system is solved by Jacobi–CG.
+//!
+//! `u^n` is evaluated at the feet by P1 interpolation or by the limited quadratic reconstruction
+//! of [`super::evaluate`].
+
+use super::characteristics::{foot, locate_all, FootOptions, Velocity};
+use super::evaluate::{check_field, FieldEvaluator, Inflow, Interpolation};
+use super::interim::{self, DUNAVANT4};
+use crate::error::{Error, Result};
+use crate::geom::DVec2;
+use crate::mesh::Mesh2;
+use rayon::prelude::*;
+
+/// Which discrete form of `u^{n+1} = u^n ∘ X^n` is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Form {
+    /// Nodal values at the feet of the new vertices.
+    #[default]
+    Nodal,
+    /// L2 projection (004 eq. (2)); each new triangle is split `subdivisions` times into four
+    /// before the degree-4 rule is applied (0 = the plain rule).
+    L2Projection { subdivisions: u8 },
+}
+
+/// Options of one advection step.
+#[derive(Debug, Clone)]
+pub struct AdvectOptions {
+    pub foot: FootOptions,
+    pub interp: Interpolation,
+    pub form: Form,
+    pub inflow: Inflow,
+    /// Relative residual tolerance of the mass-matrix solve (L2 form).
+    pub cg_tol: f64,
+}
+
+impl Default for AdvectOptions {
+    fn default() -> Self {
+        AdvectOptions {
+            foot: FootOptions::default(),
+            interp: Interpolation::QUADRATIC,
+            form: Form::Nodal,
+            inflow: Inflow::Nearest,
+            cg_tol: 1e-12,
+        }
+    }
+}
+
+/// One characteristics-Galerkin step (004 eq. (2)): `u^{n+1} = u^n ∘ X^n` on `new`, with `u_old`
+/// given on `old` at time `t0` and the feet traced back from `t1`.
+pub fn advect<V: Velocity + ?Sized>(
+    old: &Mesh2,
+    u_old: &[f64],
+    new: &Mesh2,
+    v: &V,
+    t0: f64,
+    t1: f64,
+    opts: &AdvectOptions,
+) -> Result<Vec<f64>> {
+    opts.foot.validate()?;
+    if !(t0.is_finite() && t1.is_finite()) {
+        return Err(Error::InvalidInput(format!(
+            "advect: non-finite times [{t0}, {t1}]"
+        )));
+    }
+    let eval = FieldEvaluator::new(old, u_old, opts.interp, opts.inflow.clone())?;
+    let map = |x: DVec2| foot(v, x, t0, t1, &opts.foot);
+    pull_back(&eval, new, &map, opts.form, opts.cg_tol)
+}
+
+/// `u ∘ map` on the mesh `new`, in nodal or L2-projected form, where `eval` evaluates `u` on
+/// its own mesh. Shared by advection (`map` = foot of the characteristics) and transfer
+/// (`map` = identity).
+pub fn pull_back(
+    eval: &FieldEvaluator<'_>,
+    new: &Mesh2,
+    map: &(dyn Fn(DVec2) -> DVec2 + Sync),
+    form: Form,
+    cg_tol: f64,
+) -> Result<Vec<f64>> {
+    if new.n_live_tris() == 0 {
+        return Err(Error::InvalidInput(
+            "pull_back: the new mesh is empty".into(),
+        ));
+    }
+    let old = eval.mesh();
+    let nodal = {
+        let feet: Vec<DVec2> = new.points.par_iter().map(|&x| map(x)).collect();
+        let loc = locate_all(old, &feet, None)?;
+        feet.par_iter()
+            .zip(&loc)
+            .map(|(p, l)| eval.value(*p, l))
+            .collect::<Vec<f64>>()
+    };
+    let subdivisions = match form {
+        Form::Nodal => return Ok(nodal),
+        Form::L2Projection { subdivisions } => subdivisions,
+    };
+    if subdivisions > 4 {
+        return Err(Error::InvalidInput(format!(
+            "L2 projection: at most 4 subdivisions (got {subdivisions})"
+        )));
+    }
+    let rhs = project_rhs(eval, new, map, subdivisions)?;
+    let mass = interim::mass_matrix(new);
+    let mut u = nodal;
+    interim::pcg(&mass, &rhs, &mut u, cg_tol, 2000)?;
+    check_field(new, &u, "projected field")?;
+    Ok(u)
+}
+
+/// The sub-triangles (barycentric corners in the parent) of `k` uniform subdivisions.
+fn sub_triangles(k: u8) -> Vec<[[f64; 3]; 3]> {
+    let mut tris = vec![[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]];
+    for _ in 0..k {
+        let mut next = Vec::with_capacity(4 * tris.len());
+        for [a, b, c] in tris {
+            let mid = |p: [f64; 3], q: [f64; 3]| {
+                [
+                    0.5 * (p[0] + q[0]),
+                    0.5 * (p[1] + q[1]),
+                    0.5 * (p[2] + q[2]),
+                ]
+            };
+            let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+            next.extend_from_slice(&[[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        }
+        tris = next;
+    }
+    tris
+}
+
+/// `f_i = ∫ (u ∘ map) φ_i` on `new`, by the degree-4 rule on each (sub-)triangle.
+fn project_rhs(
+    eval: &FieldEvaluator<'_>,
+    new: &Mesh2,
+    map: &(dyn Fn(DVec2) -> DVec2 + Sync),
+    subdivisions: u8,
+) -> Result<Vec<f64>> {
+    let subs = sub_triangles(subdivisions);
+    // Barycentric coordinates (in the parent) and weights of every quadrature point.
+    let mut qp: Vec<([f64; 3], f64)> = Vec::new();
+    let ws = 1.0 / subs.len() as f64;
+    for s in &subs {
+        for (l, &w) in DUNAVANT4.pts.iter().zip(DUNAVANT4.w) {
+            let mut b = [0.0; 3];
+            for (k, bk) in b.iter_mut().enumerate() {
+                *bk = l[0] * s[0][k] + l[1] * s[1][k] + l[2] * s[2][k];
+            }
+            qp.push((b, w * ws));
+        }
+    }
+    let tris: Vec<usize> = new.live_tris().collect();
+    let nq = qp.len();
+    let pts: Vec<DVec2> = tris
+        .par_iter()
+        .flat_map_iter(|&t| {
+            let p = new.tri_points(t);
+            qp.iter()
+                .map(move |(b, _)| map(b[0] * p[0] + b[1] * p[1] + b[2] * p[2]))
+        })
+        .collect();
+    let loc = locate_all(eval.mesh(), &pts, None)?;
+    let vals: Vec<f64> = pts
+        .par_iter()
+        .zip(&loc)
+        .map(|(p, l)| eval.value(*p, l))
+        .collect();
+    let mut rhs = vec![0.0; new.n_points()];
+    for (k, &t) in tris.iter().enumerate() {
+        let area = new.tri_area(t);
+        let tri = new.tris[t];
+        for (q, (b, w)) in qp.iter().enumerate() {
+            let f = vals[k * nq + q] * w * area;
+            for i in 0..3 {
+                rhs[tri[i] as usize] += f * b[i];
+            }
+        }
+    }
+    Ok(rhs)
+}

@@ -1,0 +1,129 @@
+//! Mass correction by a constant shift of the level set (004 §5.1: "assuming that the error is
+//! constant over the domain, we use an optimization scheme to determine a constant value by which
+//! the level set is normalized so as to preserve the total mass").
+//!
+//! Finds `c` with `A(c) = |{u + c < 0}| = target`, where `A` is the exact area of the negative
+//! part of the P1 field. `A` is continuous and non-increasing in `c`, equal to the whole mesh
+//! area for `c ≤ -max u` and to 0 for `c ≥ -min u`, so a root is bracketed; it is found by the
+//! Illinois variant of regula falsi with bisection as safeguard.
+
+use super::evaluate::check_field;
+use super::interim;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh2;
+
+/// Outcome of a mass correction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassCorrection {
+    /// The shift added to every nodal value.
+    pub shift: f64,
+    /// The area of `{u < 0}` before and after.
+    pub area_before: f64,
+    pub area_after: f64,
+    /// Evaluations of the area function.
+    pub iterations: usize,
+}
+
+/// The exact area of `{u + c < 0}` for a P1 field.
+pub fn shifted_area(mesh: &Mesh2, u: &[f64], c: f64) -> f64 {
+    let s: Vec<f64> = u.iter().map(|v| v + c).collect();
+    interim::enclosed_area(mesh, &s)
+}
+
+/// Shifts `u` in place by the constant `c` such that the area of `{u < 0}` equals `target`
+/// (relative tolerance `rel_tol`, e.g. 1e-13).
+pub fn correct_mass(
+    mesh: &Mesh2,
+    u: &mut [f64],
+    target: f64,
+    rel_tol: f64,
+) -> Result<MassCorrection> {
+    check_field(mesh, u, "level set")?;
+    let total = mesh.area();
+    if !(target > 0.0 && target < total) {
+        return Err(Error::InvalidInput(format!(
+            "mass correction: target area {target} is not in (0, {total})"
+        )));
+    }
+    if rel_tol.is_nan() || rel_tol <= 0.0 {
+        return Err(Error::InvalidInput(format!(
+            "mass correction: tolerance must be positive (got {rel_tol})"
+        )));
+    }
+    let (umin, umax) = u
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let area_before = interim::enclosed_area(mesh, u);
+    let f = |c: f64| shifted_area(mesh, u, c) - target;
+    // Bracket: f(a) >= 0 >= f(b).
+    let span = (umax - umin).max(1e-300);
+    let (mut a, mut b) = (-umax - 1e-9 * span, -umin + 1e-9 * span);
+    let (mut fa, mut fb) = (f(a), f(b));
+    let mut evals = 2;
+    // Start from the bracket [c0 - d, c0 + d] around c = 0 when it holds, to save evaluations.
+    let f0 = area_before - target;
+    evals += 1;
+    if f0 >= 0.0 {
+        a = 0.0;
+        fa = f0;
+    } else {
+        b = 0.0;
+        fb = f0;
+    }
+    let tol = rel_tol * target;
+    let mut c = if f0.abs() <= tol { 0.0 } else { f64::NAN };
+    let mut side = 0i8;
+    let mut fc = f0;
+    while c.is_nan() || fc.abs() > tol {
+        if evals > 200 {
+            return Err(Error::NotConverged(format!(
+                "mass correction: |A(c) - target| = {:e} after {evals} evaluations",
+                fc.abs()
+            )));
+        }
+        let mut x = if fa != fb {
+            (a * fb - b * fa) / (fb - fa)
+        } else {
+            0.5 * (a + b)
+        };
+        if !(x > a && x < b) || evals % 8 == 7 {
+            x = 0.5 * (a + b);
+        }
+        if x == a || x == b || (b - a) <= 4.0 * f64::EPSILON * (a.abs().max(b.abs()) + 1e-300) {
+            c = x;
+            fc = f(x);
+            evals += 1;
+            break;
+        }
+        let fx = f(x);
+        evals += 1;
+        c = x;
+        fc = fx;
+        if fx > 0.0 {
+            a = x;
+            fa = fx;
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        } else {
+            b = x;
+            fb = fx;
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    for v in u.iter_mut() {
+        *v += c;
+    }
+    Ok(MassCorrection {
+        shift: c,
+        area_before,
+        area_after: fc + target,
+        iterations: evals,
+    })
+}

@@ -1,0 +1,411 @@
+//! Medit `.mesh` (ASCII, `MeshVersionFormatted` 1 to 4), as read and written by MMG and
+//! FreeFem++.
+//!
+//! Dimension 2: `Vertices` (x y ref), `Triangles` (a b c ref), `Edges` (a b ref, mapped onto
+//! `Mesh2::edge_ref` of the triangle edges), `Corners`, `RequiredVertices`, `End`. Dimension 3:
+//! `Vertices`, `Tetrahedra`, `Triangles` into [`Medit3`]. Indices in files are 1-based. Keywords
+//! are case-insensitive, numbers may be split across lines, `#` starts a comment, and unknown
+//! sections (`Normals`, `Ridges`, `RequiredEdges`, ...) are skipped.
+
+use super::atomic::atomic_write;
+use super::tokens::{fmt_f64, read_text, shorten, Tokens};
+use super::validate::{build_mesh, RawEdge, RawMesh2};
+use crate::error::{Error, Result};
+use crate::geom::{DVec2, DVec3};
+use crate::mesh::{Mesh2, NONE};
+use std::io::Write;
+use std::path::Path;
+
+/// A three-dimensional Medit mesh: tetrahedra and boundary triangles with labels (0-based
+/// indices in memory).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Medit3 {
+    pub points: Vec<DVec3>,
+    pub point_ref: Vec<i32>,
+    pub tets: Vec<[u32; 4]>,
+    pub tet_ref: Vec<i32>,
+    pub tris: Vec<[u32; 3]>,
+    pub tri_ref: Vec<i32>,
+}
+
+/// Everything a Medit mesh file holds that we use, dimension-independent.
+#[derive(Default)]
+struct MeditData {
+    dim: usize,
+    coords: Vec<f64>,
+    point_ref: Vec<i32>,
+    point_line: Vec<usize>,
+    tris: Vec<[u32; 3]>,
+    tri_ref: Vec<i32>,
+    tri_line: Vec<usize>,
+    tets: Vec<[u32; 4]>,
+    tet_ref: Vec<i32>,
+    tet_line: Vec<usize>,
+    edges: Vec<RawEdge>,
+    has_edges: bool,
+    corners: Vec<(u32, usize)>,
+    required: Vec<(u32, usize)>,
+    has_vertices: bool,
+    last_line: usize,
+}
+
+/// Whether `t` looks like a keyword (starts with a letter) rather than a number.
+pub(crate) fn is_keyword(t: &str) -> bool {
+    t.as_bytes()
+        .first()
+        .is_some_and(|c| c.is_ascii_alphabetic())
+        && !matches!(t.to_ascii_lowercase().as_str(), "nan" | "inf" | "infinity")
+}
+
+/// Reads a 1-based vertex index and returns it 0-based.
+fn vertex_index(tk: &mut Tokens, what: &str) -> Result<u32> {
+    let v: i64 = tk.int(what)?;
+    if v < 1 || v > (NONE as i64) {
+        return Err(tk.err(format!(
+            "{what}: vertex index {v} is out of range (indices are 1-based)"
+        )));
+    }
+    Ok((v - 1) as u32)
+}
+
+/// Reads the header (`MeshVersionFormatted`, `Dimension`) keyword values; shared with `.sol`.
+pub(crate) fn read_header_keyword(tk: &mut Tokens, kw: &str) -> Result<Option<usize>> {
+    if kw.eq_ignore_ascii_case("MeshVersionFormatted") {
+        let v: i64 = tk.int("MeshVersionFormatted")?;
+        if !(1..=4).contains(&v) {
+            return Err(tk.err(format!(
+                "unsupported MeshVersionFormatted {v} (expected 1 to 4)"
+            )));
+        }
+        return Ok(Some(0));
+    }
+    if kw.eq_ignore_ascii_case("Dimension") {
+        let d: i64 = tk.int("Dimension")?;
+        if d != 2 && d != 3 {
+            return Err(tk.err(format!("unsupported Dimension {d} (expected 2 or 3)")));
+        }
+        return Ok(Some(d as usize));
+    }
+    Ok(None)
+}
+
+/// Skips the data of an unknown section: every token up to the next keyword.
+pub(crate) fn skip_section(tk: &mut Tokens) {
+    while let Some(t) = tk.peek() {
+        if is_keyword(t) {
+            break;
+        }
+        tk.next_token();
+    }
+}
+
+fn parse(path: &Path, text: &str) -> Result<MeditData> {
+    let mut tk = Tokens::new(path, text, Some(b'#'));
+    let mut d = MeditData::default();
+    let mut seen: Vec<String> = Vec::new();
+    while let Some((kw, line)) = tk.next_token() {
+        if !is_keyword(kw) {
+            return Err(tk.err(format!(
+                "unexpected '{}' where a keyword was expected (a count smaller than its data?)",
+                shorten(kw)
+            )));
+        }
+        let lower = kw.to_ascii_lowercase();
+        if lower == "end" {
+            break;
+        }
+        match read_header_keyword(&mut tk, kw)? {
+            Some(0) => continue,
+            Some(dim) => {
+                d.dim = dim;
+                continue;
+            }
+            None => {}
+        }
+        let known = [
+            "vertices",
+            "triangles",
+            "tetrahedra",
+            "edges",
+            "corners",
+            "requiredvertices",
+        ];
+        if known.contains(&lower.as_str()) {
+            if seen.contains(&lower) {
+                return Err(tk.err_at(line, format!("second {kw} section")));
+            }
+            seen.push(lower.clone());
+        }
+        match lower.as_str() {
+            "vertices" => {
+                if d.dim == 0 {
+                    return Err(tk.err_at(line, "Vertices section before Dimension"));
+                }
+                let n = tk.count("number of vertices")?;
+                d.has_vertices = true;
+                let cap = tk.capacity(n, 2 * d.dim + 2);
+                d.coords.reserve(cap * d.dim);
+                d.point_ref.reserve(cap);
+                for k in 0..n {
+                    let what = format!("vertex {} of {n}", k + 1);
+                    for _ in 0..d.dim {
+                        d.coords.push(tk.real(&what)?);
+                    }
+                    d.point_ref.push(tk.int(&what)?);
+                    d.point_line.push(tk.token_line());
+                }
+            }
+            "triangles" => {
+                let n = tk.count("number of triangles")?;
+                let cap = tk.capacity(n, 8);
+                d.tris.reserve(cap);
+                for k in 0..n {
+                    let what = format!("triangle {} of {n}", k + 1);
+                    let mut t = [0u32; 3];
+                    for v in &mut t {
+                        *v = vertex_index(&mut tk, &what)?;
+                    }
+                    d.tris.push(t);
+                    d.tri_ref.push(tk.int(&what)?);
+                    d.tri_line.push(tk.token_line());
+                }
+            }
+            "tetrahedra" => {
+                let n = tk.count("number of tetrahedra")?;
+                d.tets.reserve(tk.capacity(n, 10));
+                for k in 0..n {
+                    let what = format!("tetrahedron {} of {n}", k + 1);
+                    let mut t = [0u32; 4];
+                    for v in &mut t {
+                        *v = vertex_index(&mut tk, &what)?;
+                    }
+                    d.tets.push(t);
+                    d.tet_ref.push(tk.int(&what)?);
+                    d.tet_line.push(tk.token_line());
+                }
+            }
+            "edges" => {
+                let n = tk.count("number of edges")?;
+                d.has_edges = true;
+                d.edges.reserve(tk.capacity(n, 6));
+                for k in 0..n {
+                    let what = format!("edge {} of {n}", k + 1);
+                    let a = vertex_index(&mut tk, &what)?;
+                    let b = vertex_index(&mut tk, &what)?;
+                    let label = tk.int(&what)?;
+                    d.edges.push(RawEdge {
+                        v: [a, b],
+                        label,
+                        line: tk.token_line(),
+                    });
+                }
+            }
+            "corners" | "requiredvertices" => {
+                let n = tk.count(kw)?;
+                let mut list = Vec::with_capacity(tk.capacity(n, 2));
+                for k in 0..n {
+                    let v = vertex_index(&mut tk, &format!("{kw} entry {} of {n}", k + 1))?;
+                    list.push((v, tk.token_line()));
+                }
+                if lower == "corners" {
+                    d.corners = list;
+                } else {
+                    d.required = list;
+                }
+            }
+            "quadrilaterals" | "hexahedra" | "prisms" | "pyramids" => {
+                return Err(tk.err_at(
+                    line,
+                    format!("{kw} are not supported (only triangles and tetrahedra)"),
+                ));
+            }
+            _ => skip_section(&mut tk),
+        }
+    }
+    d.last_line = tk.token_line();
+    if !d.has_vertices {
+        return Err(Error::parse(path, d.last_line, "no Vertices section"));
+    }
+    Ok(d)
+}
+
+/// Parses a two-dimensional Medit mesh from `text` (`path` is used in messages). A
+/// `Dimension 3` file without tetrahedra whose vertices all have `z = 0` is accepted as 2D.
+pub fn parse_mesh2(path: &Path, text: &str) -> Result<Mesh2> {
+    let d = parse(path, text)?;
+    let n = d.point_ref.len();
+    let points: Vec<DVec2> = match d.dim {
+        2 => (0..n)
+            .map(|v| DVec2::new(d.coords[2 * v], d.coords[2 * v + 1]))
+            .collect(),
+        _ => {
+            if !d.tets.is_empty() {
+                return Err(Error::parse(
+                    path,
+                    d.tet_line[0],
+                    "this is a volume mesh (Dimension 3 with Tetrahedra); read it with read_medit3",
+                ));
+            }
+            if let Some(v) = (0..n).find(|&v| d.coords[3 * v + 2] != 0.0) {
+                return Err(Error::parse(
+                    path,
+                    d.point_line[v],
+                    format!(
+                        "Dimension 3 mesh with vertex {} off the plane z = 0: not a 2D mesh",
+                        v + 1
+                    ),
+                ));
+            }
+            (0..n)
+                .map(|v| DVec2::new(d.coords[3 * v], d.coords[3 * v + 1]))
+                .collect()
+        }
+    };
+    let raw = RawMesh2 {
+        points,
+        vert_ref: d.point_ref,
+        point_line: d.point_line,
+        tris: d.tris,
+        tri_ref: d.tri_ref,
+        tri_line: d.tri_line,
+        edges: d.edges,
+        has_edges: d.has_edges,
+        corners: d.corners,
+        required: d.required,
+        last_line: d.last_line,
+    };
+    build_mesh(path, raw)
+}
+
+/// Reads a two-dimensional Medit `.mesh` file; see [`parse_mesh2`].
+pub fn read_medit2(path: &Path) -> Result<Mesh2> {
+    parse_mesh2(path, &read_text(path)?)
+}
+
+/// Parses a three-dimensional Medit mesh (vertices, tetrahedra, triangles). Indices are checked;
+/// element orientation and conformity are left to the 3D mesh module.
+pub fn parse_medit3(path: &Path, text: &str) -> Result<Medit3> {
+    let d = parse(path, text)?;
+    if d.dim != 3 {
+        return Err(Error::parse(
+            path,
+            d.point_line.first().copied().unwrap_or(d.last_line),
+            format!("expected a Dimension 3 mesh, found Dimension {}", d.dim),
+        ));
+    }
+    let n = d.point_ref.len();
+    let bad = |line: usize, what: String| {
+        Error::parse(
+            path,
+            line,
+            format!("{what} refers to a vertex beyond the {n} vertices"),
+        )
+    };
+    for (k, t) in d.tets.iter().enumerate() {
+        if t.iter().any(|&v| v as usize >= n) {
+            return Err(bad(d.tet_line[k], format!("tetrahedron {}", k + 1)));
+        }
+    }
+    for (k, t) in d.tris.iter().enumerate() {
+        if t.iter().any(|&v| v as usize >= n) {
+            return Err(bad(d.tri_line[k], format!("triangle {}", k + 1)));
+        }
+    }
+    Ok(Medit3 {
+        points: (0..n)
+            .map(|v| DVec3::new(d.coords[3 * v], d.coords[3 * v + 1], d.coords[3 * v + 2]))
+            .collect(),
+        point_ref: d.point_ref,
+        tets: d.tets,
+        tet_ref: d.tet_ref,
+        tris: d.tris,
+        tri_ref: d.tri_ref,
+    })
+}
+
+/// Reads a three-dimensional Medit `.mesh` file; see [`parse_medit3`].
+pub fn read_medit3(path: &Path) -> Result<Medit3> {
+    parse_medit3(path, &read_text(path)?)
+}
+
+/// Writes the Medit text of a 2D mesh: live triangles, every boundary edge and every labelled
+/// interior edge in `Edges`, `Corners` and `RequiredVertices`.
+pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
+    writeln!(w, "MeshVersionFormatted 2\n\nDimension 2\n")?;
+    writeln!(w, "Vertices\n{}", mesh.points.len())?;
+    for (v, p) in mesh.points.iter().enumerate() {
+        let r = mesh.vert_ref.get(v).copied().unwrap_or(0);
+        writeln!(w, "{} {} {r}", fmt_f64(p.x), fmt_f64(p.y))?;
+    }
+    let live: Vec<usize> = mesh.live_tris().collect();
+    writeln!(w, "\nTriangles\n{}", live.len())?;
+    for &t in &live {
+        let [a, b, c] = mesh.tris[t];
+        writeln!(w, "{} {} {} {}", a + 1, b + 1, c + 1, mesh.tri_ref[t])?;
+    }
+    let edges: Vec<[u32; 3]> = mesh
+        .edges()
+        .into_iter()
+        .filter_map(|(_, t, i)| {
+            let (t, i) = (t as usize, i as usize);
+            let label = mesh.edge_ref[t][i];
+            (mesh.neighbours[t][i] == NONE || label != 0).then(|| {
+                let [a, b] = mesh.edge_vertices(t, i);
+                [a, b, label as u32]
+            })
+        })
+        .collect();
+    writeln!(w, "\nEdges\n{}", edges.len())?;
+    for [a, b, label] in edges {
+        writeln!(w, "{} {} {}", a + 1, b + 1, label as i32)?;
+    }
+    for (name, flags) in [
+        ("Corners", &mesh.corner),
+        ("RequiredVertices", &mesh.required),
+    ] {
+        let list: Vec<usize> = (0..flags.len()).filter(|&v| flags[v]).collect();
+        if !list.is_empty() {
+            writeln!(w, "\n{name}\n{}", list.len())?;
+            for v in list {
+                writeln!(w, "{}", v + 1)?;
+            }
+        }
+    }
+    writeln!(w, "\nEnd")
+}
+
+/// Writes a 2D mesh as Medit `.mesh` (atomically).
+pub fn write_medit2(path: &Path, mesh: &Mesh2) -> Result<()> {
+    atomic_write(path, |w| write_medit2_to(w, mesh))
+}
+
+/// Writes a 3D Medit mesh (atomically).
+pub fn write_medit3(path: &Path, m: &Medit3) -> Result<()> {
+    if m.point_ref.len() != m.points.len()
+        || m.tet_ref.len() != m.tets.len()
+        || m.tri_ref.len() != m.tris.len()
+    {
+        return Err(Error::InvalidInput(format!(
+            "cannot write '{}': a label array has the wrong length",
+            path.display()
+        )));
+    }
+    atomic_write(path, |w| {
+        writeln!(w, "MeshVersionFormatted 2\n\nDimension 3\n")?;
+        writeln!(w, "Vertices\n{}", m.points.len())?;
+        for (p, r) in m.points.iter().zip(&m.point_ref) {
+            writeln!(w, "{} {} {} {r}", fmt_f64(p.x), fmt_f64(p.y), fmt_f64(p.z))?;
+        }
+        writeln!(w, "\nTetrahedra\n{}", m.tets.len())?;
+        for (t, r) in m.tets.iter().zip(&m.tet_ref) {
+            writeln!(w, "{} {} {} {} {r}", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1)?;
+        }
+        if !m.tris.is_empty() {
+            writeln!(w, "\nTriangles\n{}", m.tris.len())?;
+            for (t, r) in m.tris.iter().zip(&m.tri_ref) {
+                writeln!(w, "{} {} {} {r}", t[0] + 1, t[1] + 1, t[2] + 1)?;
+            }
+        }
+        writeln!(w, "\nEnd")
+    })
+}

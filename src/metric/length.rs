@@ -1,0 +1,260 @@
+//! Lengths, element quality and mesh quality statistics in a metric (004 §3.3–3.4).
+//!
+//! **Edge length.** 004 §3.3 defines `|γ|_M = ∫_0^1 sqrt(γ'(t)^T M(γ(t)) γ'(t)) dt`. For a straight
+//! edge `e = b - a` with metrics known only at its ends, the length density is interpolated
+//! *geometrically*: `ℓ(t) = ℓ_a^{1-t} ℓ_b^t` with `ℓ_a = |e|_{M_a}`, `ℓ_b = |e|_{M_b}` (the size
+//! varies geometrically along the edge, as gradation assumes), which integrates exactly to
+//!
+//! ```text
+//! |e|_M = ∫_0^1 ℓ_a^{1-t} ℓ_b^t dt = (ℓ_a - ℓ_b) / ln(ℓ_a / ℓ_b),   = ℓ_a when ℓ_a = ℓ_b.
+//! ```
+//!
+//! It lies between the geometric and the arithmetic mean of `ℓ_a`, `ℓ_b` (Alauzet & Frey,
+//! "Anisotropic mesh adaptation for CFD computations", 2010).
+//!
+//! **Element quality.** 004 §3.4:
+//!
+//! ```text
+//! Q_ani(K) = α_d (Σ_i e_i^T M_K e_i)^{d/2} / (|K| sqrt(det M_K)),   α_2 = sqrt(3) / 12,
+//! ```
+//!
+//! so that `Q_ani = 1` for an equilateral triangle of unit edge length in `M_K` (`Σ = 3`,
+//! `|K| sqrt(det M_K) = sqrt(3)/4`) and `Q_ani >= 1` otherwise. `M_K` is the log-Euclidean mean of
+//! the three vertex metrics ([`element_metric`]). `Q_ani` is invariant under any affine map `F`
+//! that carries the metric along (`M' = A^{-T} M A^{-1}` for `F(x) = A x + c`, `det A > 0`).
+
+use rayon::prelude::*;
+
+use super::interpolate::interpolate_log;
+use super::Sym2;
+use crate::geom::DVec2;
+use crate::mesh::Mesh2;
+
+/// `α_2 = sqrt(3) / 12`, the normalisation of [`q_ani`] (004 §3.4).
+pub const ALPHA_2: f64 = 0.144_337_567_297_406_43;
+
+/// Lower end of the unit-length interval `[1/sqrt(2), sqrt(2)]`.
+pub const L_MIN: f64 = std::f64::consts::FRAC_1_SQRT_2;
+/// Upper end of the unit-length interval `[1/sqrt(2), sqrt(2)]`.
+pub const L_MAX: f64 = std::f64::consts::SQRT_2;
+
+/// Length of the edge `[pa, pb]` in the metric field with end values `ma`, `mb`, with the length
+/// density interpolated geometrically: `(ℓ_a - ℓ_b) / ln(ℓ_a / ℓ_b)` where `ℓ_a = |pb - pa|_{ma}`,
+/// `ℓ_b = |pb - pa|_{mb}` (`ℓ_a` when they are equal; see the module documentation).
+pub fn edge_length(pa: DVec2, pb: DVec2, ma: &Sym2, mb: &Sym2) -> f64 {
+    let e = pb - pa;
+    geometric_mean_length(ma.quad(e).sqrt(), mb.quad(e).sqrt())
+}
+
+/// `∫_0^1 la^{1-t} lb^t dt = la (r - 1) / ln r` with `r = lb / la`, evaluated through `ln_1p` so
+/// that it is accurate when `r` is close to one.
+#[inline]
+pub fn geometric_mean_length(la: f64, lb: f64) -> f64 {
+    if la == lb {
+        return la;
+    }
+    if la == 0.0 || lb == 0.0 {
+        // The density la^{1-t} 0^t vanishes for t > 0.
+        return 0.0;
+    }
+    let (lo, hi) = if la < lb { (la, lb) } else { (lb, la) };
+    let x = hi / lo - 1.0;
+    lo * x / x.ln_1p()
+}
+
+/// `Q_ani` of the triangle `p` in the metric `m` (004 §3.4, `α_2 = sqrt(3)/12`):
+/// `α_2 Σ e_i^T m e_i / (|K| sqrt(det m))`. Equals 1 for a unit equilateral triangle in `m`, is
+/// larger otherwise, and is `+inf` when the signed area is not positive.
+pub fn q_ani(p: [DVec2; 3], m: &Sym2) -> f64 {
+    let area = crate::geom::signed_area(p[0], p[1], p[2]);
+    if area.is_nan() || area <= 0.0 {
+        return f64::INFINITY;
+    }
+    let s = m.quad(p[1] - p[0]) + m.quad(p[2] - p[1]) + m.quad(p[0] - p[2]);
+    ALPHA_2 * s / (area * m.det().sqrt())
+}
+
+/// The element metric `M_K` (004 §3.3): log-Euclidean mean of the three vertex metrics.
+pub fn element_metric(m: [&Sym2; 3]) -> Sym2 {
+    interpolate_log(&[(1.0, *m[0]), (1.0, *m[1]), (1.0, *m[2])])
+}
+
+/// Upper bounds of the bins of [`QualityStats::q_ani_histogram`].
+pub const Q_ANI_BINS: [f64; 9] = [1.05, 1.1, 1.25, 1.5, 2.0, 3.0, 5.0, 10.0, f64::INFINITY];
+
+/// How well a mesh matches a metric field: edge lengths and `Q_ani` (004 §3.4–3.5).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct QualityStats {
+    /// Number of edges measured.
+    pub edges: usize,
+    /// Share of edges whose metric length is in `[1/sqrt(2), sqrt(2)]`.
+    pub edge_length_in_range: f64,
+    pub edge_length_min: f64,
+    pub edge_length_max: f64,
+    /// Number of triangles measured.
+    pub tris: usize,
+    /// Mean of `Q_ani` over the triangles (`+inf` if any triangle is inverted).
+    pub q_ani_mean: f64,
+    pub q_ani_max: f64,
+    /// Index of the triangle with the largest `Q_ani` (the first one on ties).
+    pub worst_tri: usize,
+    /// `(upper bound, count)`: triangles with `Q_ani` in `(previous bound, bound]`
+    /// (bounds [`Q_ANI_BINS`]).
+    pub q_ani_histogram: Vec<(f64, usize)>,
+}
+
+/// Work below which the statistics are computed sequentially.
+const PAR_MIN: usize = 4096;
+
+/// Edge-length and `Q_ani` statistics of the live triangles of `mesh` in the vertex metric field
+/// `metric` (edges with [`edge_length`], elements with [`q_ani`] in [`element_metric`]).
+///
+/// `metric` should hold one SPD tensor per vertex (check with [`super::validate_field`]); edges and
+/// triangles that touch a vertex without an entry are skipped (and so not counted). Runs in
+/// parallel on large meshes; the result does not depend on the thread count. An empty mesh gives
+/// zero counts and zero values.
+pub fn quality_stats(mesh: &Mesh2, metric: &[Sym2]) -> QualityStats {
+    let n = metric.len();
+    let edges: Vec<[u32; 2]> = mesh
+        .edges()
+        .into_iter()
+        .map(|(e, _, _)| e)
+        .filter(|e| (e[1] as usize) < n)
+        .collect();
+    let len = |e: &[u32; 2]| {
+        let (a, b) = (e[0] as usize, e[1] as usize);
+        edge_length(mesh.points[a], mesh.points[b], &metric[a], &metric[b])
+    };
+    let lengths: Vec<f64> = if edges.len() >= PAR_MIN {
+        edges.par_iter().map(len).collect()
+    } else {
+        edges.iter().map(len).collect()
+    };
+    let tris: Vec<usize> = mesh
+        .live_tris()
+        .filter(|&t| mesh.tris[t].iter().all(|&v| (v as usize) < n))
+        .collect();
+    let qual = |&t: &usize| {
+        let [a, b, c] = mesh.tris[t].map(|v| v as usize);
+        q_ani(
+            mesh.tri_points(t),
+            &element_metric([&metric[a], &metric[b], &metric[c]]),
+        )
+    };
+    let q: Vec<f64> = if tris.len() >= PAR_MIN {
+        tris.par_iter().map(qual).collect()
+    } else {
+        tris.iter().map(qual).collect()
+    };
+
+    let mut s = QualityStats {
+        edges: lengths.len(),
+        tris: q.len(),
+        q_ani_histogram: Q_ANI_BINS.iter().map(|&b| (b, 0)).collect(),
+        ..QualityStats::default()
+    };
+    if !lengths.is_empty() {
+        let in_range = lengths
+            .iter()
+            .filter(|&&l| (L_MIN..=L_MAX).contains(&l))
+            .count();
+        s.edge_length_in_range = in_range as f64 / lengths.len() as f64;
+        s.edge_length_min = lengths.iter().copied().fold(f64::INFINITY, f64::min);
+        s.edge_length_max = lengths.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    }
+    if !q.is_empty() {
+        s.q_ani_mean = q.iter().sum::<f64>() / q.len() as f64;
+        let (mut worst, mut qmax) = (0, f64::NEG_INFINITY);
+        for (i, &qi) in q.iter().enumerate() {
+            if qi > qmax || (qi.is_nan() && !qmax.is_nan()) {
+                worst = i;
+                qmax = qi;
+            }
+            let bin = Q_ANI_BINS
+                .iter()
+                .position(|&b| qi <= b)
+                .unwrap_or(Q_ANI_BINS.len() - 1);
+            s.q_ani_histogram[bin].1 += 1;
+        }
+        s.q_ani_max = qmax;
+        s.worst_tri = tris[worst];
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn alpha_2_value() {
+        assert!((ALPHA_2 - 3f64.sqrt() / 12.0).abs() < 1e-17);
+    }
+
+    #[test]
+    fn edge_length_formula() {
+        let m = Sym2::iso(0.1);
+        let (a, b) = (DVec2::ZERO, DVec2::new(0.3, 0.4));
+        assert!((edge_length(a, b, &m, &m) - 5.0).abs() < 1e-14);
+        // Sizes 0.1 and 0.4 at the ends: ℓ_a = 5, ℓ_b = 1.25; (5 - 1.25) / ln 4.
+        let l = edge_length(a, b, &m, &Sym2::iso(0.4));
+        assert!((l - 3.75 / 4f64.ln()).abs() < 1e-14);
+        assert!((edge_length(b, a, &Sym2::iso(0.4), &m) - l).abs() < 1e-15);
+        // Nearly equal ends: continuous (no 0/0).
+        let l = geometric_mean_length(2.0, 2.0 * (1.0 + 1e-13));
+        assert!((l - 2.0 * (1.0 + 0.5e-13)).abs() < 1e-15);
+        // Exact against a fine quadrature of ℓ_a^{1-t} ℓ_b^t.
+        let (la, lb) = (0.3_f64, 7.0_f64);
+        let n = 20000;
+        let quad: f64 = (0..n)
+            .map(|k| {
+                let t = (k as f64 + 0.5) / n as f64;
+                la.powf(1.0 - t) * lb.powf(t)
+            })
+            .sum::<f64>()
+            / n as f64;
+        assert!((geometric_mean_length(la, lb) - quad).abs() < 1e-7);
+    }
+
+    #[test]
+    fn q_ani_equilateral_and_degenerate() {
+        let h = 0.01;
+        let p = [
+            DVec2::ZERO,
+            DVec2::new(h, 0.0),
+            DVec2::new(0.5 * h, 0.5 * 3f64.sqrt() * h),
+        ];
+        assert!((q_ani(p, &Sym2::iso(h)) - 1.0).abs() < 1e-13);
+        // Same triangle, any isotropic scaling: still 1 (scale invariance).
+        assert!((q_ani(p, &Sym2::iso(7.0)) - 1.0).abs() < 1e-13);
+        // Right isosceles triangle: Σ = 4 h², |K| = h²/2 → 8 α_2 = 2/sqrt(3).
+        let r = [DVec2::ZERO, DVec2::new(h, 0.0), DVec2::new(0.0, h)];
+        assert!((q_ani(r, &Sym2::iso(h)) - 2.0 / 3f64.sqrt()).abs() < 1e-13);
+        assert_eq!(q_ani([p[0], p[2], p[1]], &Sym2::iso(h)), f64::INFINITY);
+        assert_eq!(q_ani([p[0], p[1], p[1]], &Sym2::iso(h)), f64::INFINITY);
+    }
+
+    #[test]
+    fn stats_on_a_grid() {
+        use crate::mesh::GridPattern;
+        let mesh = Mesh2::rectangle(DVec2::ZERO, DVec2::ONE, 4, 4, GridPattern::Right).unwrap();
+        // The metric that makes the "Right" grid a unit mesh: |(h,0)| = |(0,h)| = |(h,h)| = 1.
+        let h = 0.25;
+        let m = Sym2::new(1.0, -0.5, 1.0).scale(1.0 / (h * h));
+        let metric = vec![m; mesh.n_points()];
+        let s = quality_stats(&mesh, &metric);
+        assert_eq!(s.edges, 3 * 16 + 8);
+        assert_eq!(s.tris, 32);
+        assert!((s.edge_length_min - 1.0).abs() < 1e-12 && (s.edge_length_max - 1.0).abs() < 1e-12);
+        assert_eq!(s.edge_length_in_range, 1.0);
+        assert!((s.q_ani_max - 1.0).abs() < 1e-12 && (s.q_ani_mean - 1.0).abs() < 1e-12);
+        assert_eq!(s.q_ani_histogram[0].1, 32);
+        // Isotropic metric: edges of length 1 and sqrt(2), Q_ani = 2/sqrt(3) everywhere.
+        let s = quality_stats(&mesh, &vec![Sym2::iso(h); mesh.n_points()]);
+        assert!((s.edge_length_max - 2f64.sqrt()).abs() < 1e-12);
+        assert!((s.q_ani_mean - 2.0 / 3f64.sqrt()).abs() < 1e-12);
+        // Missing metric entries: those edges are skipped.
+        let s = quality_stats(&mesh, &metric[..5]);
+        assert_eq!((s.edges, s.tris), (4, 0));
+    }
+}
