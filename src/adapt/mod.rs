@@ -1,1 +1,33 @@
-//! Anisotropic mesh adaptation: metric-driven split, collapse, flip and smoothing.
+//! Anisotropic mesh adaptation: metric-driven split, collapse, flip, smoothing and Delaunay
+//! insertion on [`crate::mesh::Mesh2`] (004 §3.5), the driver that alternates them, metric
+//! sources (004 eq. (6), multiscale Lp) and the shape-capturing loop.
+//!
+//! Layout (one concept per file, MMG/Omega_h style):
+//! - `topo.rs`: fans, vertex classes (free / on a labelled curve / fixed), the per-pass workspace.
+//! - `kernel.rs`: the metric quantities the operators evaluate (edge length, `Q_ani`), thin
+//!   wrappers over [`crate::metric`].
+//! - `split.rs`, `collapse.rs`, `flip.rs`, `smooth.rs`, `insert.rs`: one operator each, with a
+//!   pure `check` that returns the planned change, an `apply`, and a `pass` returning a count.
+//! - `driver.rs`: [`adapt`], [`AdaptOptions`], [`AdaptReport`].
+//! - `sources.rs`: [`MetricSource`] implementations and metric fields from level sets/Hessians.
+//! - `shape.rs`: [`adapt_to_shape`]; `report.rs`: [`MeshReport`].
+//!
+//! Invariants kept by every operator: counter-clockwise triangles (exact `orient2d`), symmetric
+//! `neighbours`, `edge_ref`, `vert_tri`, `corner`, `required`, `vert_ref`, `tri_ref`. Deleted
+//! triangles are tombstones until [`crate::mesh::Mesh2::compact`] (the driver compacts at the
+//! end, remapping the metric and the fields).
+
+mod kernel;
+mod topo;
+
+pub mod collapse;
+pub mod flip;
+pub mod smooth;
+pub mod split;
+
+mod driver;
+pub mod sources;
+
+pub use driver::{adapt, AdaptOptions, AdaptReport, PassKind, PassReport};
+pub use sources::{AnalyticLevelSetSource, LevelSetMetric, MetricSource, NoSource};
+pub use topo::{Ctx, OpParams, VClass};

@@ -14,7 +14,6 @@
 //! disagree by more than `disagreement` times their size, P1 is used; otherwise `q` is clamped
 //! into the range of the element values widened by the size of the Taylor corrections.
 
-use super::interim;
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::mesh::{Location, Mesh2, NONE};
@@ -59,21 +58,9 @@ impl std::fmt::Debug for Inflow {
     }
 }
 
-/// Recovered per-vertex derivatives of a P1 field.
-#[derive(Debug, Clone, Default)]
-pub struct Derivatives {
-    pub gradient: Vec<DVec2>,
-    pub hessian: Vec<Sym2>,
-}
-
-impl Derivatives {
-    /// Least-squares recovery of the gradient and Hessian of `u` at every vertex (004 §4.3).
-    pub fn recover(mesh: &Mesh2, u: &[f64]) -> Result<Derivatives> {
-        check_field(mesh, u, "u")?;
-        let (gradient, hessian) = interim::recover_quadratic(mesh, u);
-        Ok(Derivatives { gradient, hessian })
-    }
-}
+/// Recovered per-vertex derivatives of a P1 field (gradient and Hessian), as computed by
+/// [`crate::recovery::recover_ls`] (least-squares Taylor fit, 004 §4.3).
+pub type Derivatives = crate::recovery::Recovered;
 
 /// Checks that `u` has one finite value per vertex of `mesh`.
 pub fn check_field(mesh: &Mesh2, u: &[f64], name: &str) -> Result<()> {
@@ -123,7 +110,7 @@ impl<'a> FieldEvaluator<'a> {
                         "quadratic limiter threshold must be positive (got {disagreement})"
                     )));
                 }
-                Some(Derivatives::recover(mesh, u)?)
+                Some(crate::recovery::recover_ls(mesh, u)?)
             }
         };
         Ok(FieldEvaluator {

@@ -1,13 +1,11 @@
 //! Interim numerical helpers used by `advect` until the owning modules land on `main`:
-//! quadrature and P1 mass matrix + Jacobi–CG (→ `crate::fem`), least-squares derivative recovery
-//! (→ `crate::recovery::recover_ls`), exact P1 area and length of the zero level
+//! quadrature and P1 mass matrix + Jacobi–CG (→ `crate::fem`), exact P1 area and length of the zero level
 //! (→ `crate::levelset::interface`). Each function here is small and private to the crate; it
 //! is replaced by a call to the owning module once that module is available.
 
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::mesh::Mesh2;
-use crate::metric::Sym2;
 use rayon::prelude::*;
 
 /// A quadrature rule on the reference triangle: barycentric points and weights summing to 1.
@@ -147,59 +145,6 @@ pub(crate) fn pcg(a: &Csr, b: &[f64], x: &mut [f64], tol: f64, max_iter: usize) 
     Err(Error::NotConverged(format!(
         "mass-matrix CG: no convergence to {tol:e} in {max_iter} iterations"
     )))
-}
-
-/// Per-vertex gradient and Hessian of a P1 field by a least-squares quadratic fit on the
-/// two-ring patch of each vertex (004 §4.3). Returns `(gradient, hessian)`.
-pub(crate) fn recover_quadratic(mesh: &Mesh2, u: &[f64]) -> (Vec<DVec2>, Vec<Sym2>) {
-    let n = mesh.n_points();
-    (0..n)
-        .into_par_iter()
-        .map(|v| {
-            let patch = mesh.vertex_patch(v as u32, 2);
-            let x0 = mesh.points[v];
-            let h = patch
-                .iter()
-                .map(|&w| (mesh.points[w as usize] - x0).length())
-                .fold(0.0, f64::max);
-            if patch.len() < 5 || h <= 0.0 {
-                return (DVec2::ZERO, Sym2::default());
-            }
-            // Unknowns: c, gx, gy, hxx, hxy, hyy of u0 + c + g.d + 1/2 d^T H d (scaled d/h).
-            let mut ata = nalgebra::Matrix6::<f64>::zeros();
-            let mut atb = nalgebra::Vector6::<f64>::zeros();
-            let mut add = |d: DVec2, val: f64| {
-                let r = nalgebra::Vector6::new(
-                    1.0,
-                    d.x,
-                    d.y,
-                    0.5 * d.x * d.x,
-                    d.x * d.y,
-                    0.5 * d.y * d.y,
-                );
-                ata += r * r.transpose();
-                atb += r * val;
-            };
-            add(DVec2::ZERO, 0.0);
-            for &w in &patch {
-                add((mesh.points[w as usize] - x0) / h, u[w as usize] - u[v]);
-            }
-            match ata.cholesky() {
-                Some(ch) => {
-                    let s = ch.solve(&atb);
-                    (
-                        DVec2::new(s[1], s[2]) / h,
-                        Sym2 {
-                            xx: s[3] / (h * h),
-                            xy: s[4] / (h * h),
-                            yy: s[5] / (h * h),
-                        },
-                    )
-                }
-                None => (DVec2::ZERO, Sym2::default()),
-            }
-        })
-        .unzip()
 }
 
 /// The zero crossing on the edge `(pa, ua)`–`(pb, ub)` of a P1 field.

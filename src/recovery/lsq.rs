@@ -44,8 +44,9 @@ pub(crate) fn solve(
             return None;
         }
         let alpha = if v[0] > 0.0 { -norm } else { norm };
+        // |x - alpha e1|^2 = |x|^2 - 2 alpha x_0 + alpha^2 = 2 (alpha^2 - alpha x_0).
+        let vnorm2 = 2.0 * (alpha * alpha - alpha * v[0]);
         v[0] -= alpha;
-        let vnorm2 = v.iter().map(|c| c * c).sum::<f64>();
         rdiag[k] = alpha;
         if vnorm2 == 0.0 {
             continue; // the column is already a multiple of e_k

@@ -1,0 +1,252 @@
+//! Edge collapse (MMG `colver_2d.c`, 004 §3.5): a vertex `a` with an edge shorter than `l_min`
+//! is merged into the other end `b`. The two (one on a curve) triangles sharing the edge
+//! disappear and their outer edges are glued.
+//!
+//! Rejected when: `a` is a corner, required, or a junction of labelled curves; `a` lies on a
+//! boundary/interface curve and `(a, b)` is not an edge of that curve; the link condition fails
+//! (the rings of `a` and `b` share a vertex other than the apexes of the edge); a triangle would
+//! invert (exact `orient2d`); a new edge would be longer than `l_max`; or the worst `Q_ani` of the
+//! ball would exceed the floor and be worse than before.
+
+use super::topo::{local, Ctx, VClass};
+use crate::mesh::{next, prev, NONE};
+
+/// A planned collapse of vertex `a` onto its neighbour `b`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CollapsePlan {
+    pub a: u32,
+    pub b: u32,
+}
+
+/// Pure check of the collapse `a -> b`. `ctx.fan` must hold the fan of `a` (see `pass`); the fan
+/// of `b` is loaded into `ctx.fan2`.
+pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
+    match ctx.vclass(a) {
+        VClass::Fixed => return None,
+        VClass::Curve { ends, .. } => {
+            if ends[0] != b && ends[1] != b {
+                return None;
+            }
+        }
+        VClass::Free => {}
+    }
+    if ctx.fan.len() < 2 {
+        return None;
+    }
+    let mesh = &*ctx.mesh;
+    // The triangles holding the edge, and their apexes.
+    let mut apex = [NONE; 2];
+    let mut n_shared = 0;
+    for &t in &ctx.fan {
+        let tri = mesh.tris[t as usize];
+        if tri.contains(&b) {
+            let ia = local(tri, a);
+            let ib = local(tri, b);
+            let ic = 3 - ia - ib;
+            if n_shared < 2 {
+                apex[n_shared] = tri[ic];
+            }
+            n_shared += 1;
+            // Outer edges (a, c) (opposite b) and (b, c) (opposite a) must not both be curves.
+            let curve_ac =
+                mesh.neighbours[t as usize][ib] == NONE || mesh.edge_ref[t as usize][ib] != 0;
+            let curve_bc =
+                mesh.neighbours[t as usize][ia] == NONE || mesh.edge_ref[t as usize][ia] != 0;
+            if curve_ac && curve_bc {
+                return None;
+            }
+        }
+    }
+    if n_shared == 0 || n_shared > 2 {
+        return None;
+    }
+    // Link condition: ring(a) ∩ ring(b) = apexes.
+    let mut fan2 = std::mem::take(&mut ctx.fan2);
+    fan2.clear();
+    mesh.for_each_fan_triangle(b, |t| fan2.push(t));
+    let in_ring_b = |w: u32| fan2.iter().any(|&t| mesh.tris[t as usize].contains(&w));
+    let mut ok = true;
+    let (p_b, m_b, l_b) = (ctx.p(b), *ctx.m(b), ctx.logm[b as usize]);
+    let mut q_old: f64 = 1.0;
+    let mut q_new: f64 = 1.0;
+    for &t in &ctx.fan {
+        let tri = mesh.tris[t as usize];
+        q_old = q_old.max(ctx.q(tri));
+        if tri.contains(&b) {
+            continue;
+        }
+        let ia = local(tri, a);
+        for w in [tri[next(ia)], tri[prev(ia)]] {
+            if w != apex[0] && w != apex[1] && in_ring_b(w) {
+                ok = false;
+            }
+        }
+        let newtri = tri.map(|v| if v == a { b } else { v });
+        let [p0, p1, p2] = newtri.map(|v| ctx.p(v));
+        if crate::geom::orient2d(p0, p1, p2) <= 0.0 {
+            ok = false;
+            break;
+        }
+        q_new = q_new.max(ctx.q_moved(tri, a, p_b, &l_b));
+        // New edges b -> w must not be too long.
+        for w in [tri[next(ia)], tri[prev(ia)]] {
+            if w != apex[0] && w != apex[1] {
+                let l = super::kernel::edge_length(p_b, ctx.p(w), &m_b, ctx.m(w));
+                if l > ctx.params.l_max {
+                    ok = false;
+                }
+            }
+        }
+        if !ok {
+            break;
+        }
+    }
+    ctx.fan2 = fan2;
+    if !ok || !(q_new <= ctx.params.q_max || q_new <= q_old) {
+        return None;
+    }
+    Some(CollapsePlan { a, b })
+}
+
+/// Pure check of the collapse `a -> b` (loads the fans itself).
+pub fn check(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
+    ctx.load_fan(a);
+    check_loaded(ctx, a, b)
+}
+
+/// Applies a collapse planned by [`check`] (the fan of `a` must still be in `ctx.fan`).
+pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
+    let (a, b) = (plan.a, plan.b);
+    let fan = std::mem::take(&mut ctx.fan);
+    let mut survivor = NONE;
+    let mut fixups: [(u32, u32); 2] = [(NONE, NONE); 2];
+    let mut nfix = 0;
+    for &t in &fan {
+        let tu = t as usize;
+        let tri = ctx.mesh.tris[tu];
+        if !tri.contains(&b) {
+            continue;
+        }
+        let ia = local(tri, a);
+        let ib = local(tri, b);
+        let ic = 3 - ia - ib;
+        let c = tri[ic];
+        let (n_ac, r_ac) = (ctx.mesh.neighbours[tu][ib], ctx.mesh.edge_ref[tu][ib]);
+        let (n_bc, r_bc) = (ctx.mesh.neighbours[tu][ia], ctx.mesh.edge_ref[tu][ia]);
+        let r = if n_ac == NONE {
+            r_ac
+        } else if n_bc == NONE {
+            r_bc
+        } else if r_ac != 0 {
+            r_ac
+        } else {
+            r_bc
+        };
+        let j_ac = if n_ac != NONE {
+            ctx.mesh.mirror_edge(tu, n_ac as usize)
+        } else {
+            None
+        };
+        let j_bc = if n_bc != NONE {
+            ctx.mesh.mirror_edge(tu, n_bc as usize)
+        } else {
+            None
+        };
+        if let Some(j) = j_ac {
+            ctx.mesh.neighbours[n_ac as usize][j] = n_bc;
+            ctx.mesh.edge_ref[n_ac as usize][j] = r;
+            ctx.tstamp[n_ac as usize] = ctx.gen;
+        }
+        if let Some(j) = j_bc {
+            ctx.mesh.neighbours[n_bc as usize][j] = n_ac;
+            ctx.mesh.edge_ref[n_bc as usize][j] = r;
+            ctx.tstamp[n_bc as usize] = ctx.gen;
+        }
+        // Seeds for c and b: a surviving neighbour that holds them.
+        let keep = if n_bc != NONE { n_bc } else { n_ac };
+        fixups[nfix] = (c, keep);
+        nfix += 1;
+        if n_bc != NONE {
+            survivor = n_bc;
+        }
+        ctx.mesh.tris[tu] = [NONE; 3];
+        ctx.mesh.neighbours[tu] = [NONE; 3];
+        ctx.tstamp[tu] = ctx.gen;
+    }
+    for &t in &fan {
+        let tu = t as usize;
+        if ctx.mesh.tris[tu][0] == NONE {
+            continue;
+        }
+        let ia = local(ctx.mesh.tris[tu], a);
+        ctx.mesh.tris[tu][ia] = b;
+        ctx.tstamp[tu] = ctx.gen;
+        survivor = t;
+    }
+    ctx.mesh.vert_tri[a as usize] = NONE;
+    ctx.mesh.vert_tri[b as usize] = survivor;
+    for &(c, keep) in &fixups[..nfix] {
+        let s = ctx.mesh.vert_tri[c as usize];
+        if s == NONE || ctx.mesh.tris[s as usize][0] == NONE {
+            ctx.mesh.vert_tri[c as usize] = keep;
+        }
+    }
+    ctx.fan = fan;
+}
+
+/// One collapse pass over the vertices: each vertex with an edge shorter than `l_min` is
+/// collapsed onto the end of its shortest such edge that passes the check (trying the others in
+/// order of length). A vertex that received a collapse is not collapsed again in the same pass.
+/// Returns the number of collapses.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    ctx.new_pass();
+    let nv = ctx.mesh.n_points();
+    let l_min = ctx.params.l_min;
+    let mut count = 0;
+    let mut short: Vec<(f64, u32)> = Vec::with_capacity(16);
+    for a in 0..nv as u32 {
+        if ctx.mesh.vert_tri[a as usize] == NONE || ctx.vstamp[a as usize] == ctx.gen {
+            continue;
+        }
+        let au = a as usize;
+        if ctx.mesh.corner[au] || ctx.mesh.required[au] {
+            continue;
+        }
+        ctx.load_fan(a);
+        short.clear();
+        for k in 0..ctx.fan.len() {
+            let tri = ctx.mesh.tris[ctx.fan[k] as usize];
+            let ia = local(tri, a);
+            // Each ring vertex once: the edge leaving a counter-clockwise, plus the last one of
+            // an open fan.
+            let w = tri[next(ia)];
+            let l = ctx.len(a, w);
+            if l < l_min {
+                short.push((l, w));
+            }
+            if k + 1 == ctx.fan.len() {
+                let w2 = tri[prev(ia)];
+                let first = ctx.mesh.tris[ctx.fan[0] as usize];
+                if w2 != first[next(local(first, a))] {
+                    let l = ctx.len(a, w2);
+                    if l < l_min {
+                        short.push((l, w2));
+                    }
+                }
+            }
+        }
+        if short.is_empty() {
+            continue;
+        }
+        short.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        for &(_, b) in short.iter() {
+            if let Some(plan) = check_loaded(ctx, a, b) {
+                apply(ctx, &plan);
+                ctx.vstamp[b as usize] = ctx.gen;
+                count += 1;
+                break;
+            }
+        }
+    }
+    count
+}

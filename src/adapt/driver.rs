@@ -1,0 +1,266 @@
+//! The adaptation driver (004 §3.5, MMG `mmg2d1.c` style): split/collapse cycles until the edge
+//! lengths are in `[l_min, l_max]` or a cycle cap is reached, each followed by flips and
+//! smoothing, then a few final flip/smooth sweeps. Compacts the mesh at the end and remaps the
+//! metric and the fields.
+
+use super::sources::MetricSource;
+use super::topo::{Ctx, OpParams};
+use super::{collapse, flip, smooth, split};
+use crate::error::{Error, Result};
+use crate::mesh::{Mesh2, NONE};
+use crate::metric::Sym2;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Options of [`adapt`]. Build with `AdaptOptions::default().l_max(1.5).max_cycles(10)`.
+#[derive(Debug, Clone, Serialize)]
+pub struct AdaptOptions {
+    /// Edges shorter than this in the metric are collapsed (default `1/sqrt(2)`).
+    pub l_min: f64,
+    /// Edges longer than this are split (default `sqrt(2)`).
+    pub l_max: f64,
+    /// Quality floor as a maximal `Q_ani`: collapses and moves may not create a worse triangle
+    /// unless the ball was already worse (default 5).
+    pub q_max: f64,
+    /// Maximal number of split/collapse cycles (default 20).
+    pub max_cycles: usize,
+    /// Final flip + smoothing sweeps after the cycles (default 3).
+    pub final_sweeps: usize,
+    /// Verify `Mesh2::check` after every pass and fail with the defect (for tests; costs time).
+    pub check_each_pass: bool,
+}
+
+impl Default for AdaptOptions {
+    fn default() -> Self {
+        AdaptOptions {
+            l_min: std::f64::consts::FRAC_1_SQRT_2,
+            l_max: std::f64::consts::SQRT_2,
+            q_max: 5.0,
+            max_cycles: 20,
+            final_sweeps: 3,
+            check_each_pass: false,
+        }
+    }
+}
+
+impl AdaptOptions {
+    /// Sets `l_min`.
+    pub fn l_min(mut self, v: f64) -> Self {
+        self.l_min = v;
+        self
+    }
+    /// Sets `l_max`.
+    pub fn l_max(mut self, v: f64) -> Self {
+        self.l_max = v;
+        self
+    }
+    /// Sets the quality floor (maximal `Q_ani`).
+    pub fn q_max(mut self, v: f64) -> Self {
+        self.q_max = v;
+        self
+    }
+    /// Sets the cycle cap.
+    pub fn max_cycles(mut self, v: usize) -> Self {
+        self.max_cycles = v;
+        self
+    }
+    /// Sets the number of final flip/smooth sweeps.
+    pub fn final_sweeps(mut self, v: usize) -> Self {
+        self.final_sweeps = v;
+        self
+    }
+    /// Turns on `check()` after every pass.
+    pub fn check_each_pass(mut self, v: bool) -> Self {
+        self.check_each_pass = v;
+        self
+    }
+
+    fn validate(&self) -> Result<()> {
+        if !(self.l_min > 0.0 && self.l_max.is_finite() && 2.0 * self.l_min <= self.l_max) {
+            return Err(Error::InvalidInput(format!(
+                "adapt: need 0 < 2 l_min <= l_max (got l_min {}, l_max {})",
+                self.l_min, self.l_max
+            )));
+        }
+        if self.q_max.is_nan() || self.q_max < 1.0 {
+            return Err(Error::InvalidInput(format!(
+                "adapt: the quality floor q_max must be >= 1 (got {})",
+                self.q_max
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The kind of a pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum PassKind {
+    Split,
+    Collapse,
+    Flip,
+    Smooth,
+}
+
+/// One pass: what, how many operations, how long.
+#[derive(Debug, Clone, Serialize)]
+pub struct PassReport {
+    pub kind: PassKind,
+    pub count: usize,
+    pub seconds: f64,
+}
+
+/// What [`adapt`] did. `converged == false` means the cycle cap was reached with edges still
+/// out of range: the mesh is valid, only not fully adapted.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct AdaptReport {
+    pub cycles: usize,
+    pub passes: Vec<PassReport>,
+    pub splits: usize,
+    pub collapses: usize,
+    pub flips: usize,
+    pub moves: usize,
+    pub converged: bool,
+    pub seconds: f64,
+}
+
+/// Checks the inputs of [`adapt`]: a valid mesh, one SPD metric per vertex, fields of the right
+/// length without NaN.
+pub fn validate_inputs(mesh: &Mesh2, metric: &[Sym2], fields: &[Vec<f64>]) -> Result<()> {
+    mesh.check()?;
+    if metric.len() != mesh.n_points() {
+        return Err(Error::InvalidInput(format!(
+            "adapt: the metric has {} tensors for {} vertices",
+            metric.len(),
+            mesh.n_points()
+        )));
+    }
+    for (v, m) in metric.iter().enumerate() {
+        if mesh.vert_tri[v] != NONE {
+            m.validate(v)?;
+        }
+    }
+    for (k, f) in fields.iter().enumerate() {
+        if f.len() != mesh.n_points() {
+            return Err(Error::InvalidField {
+                name: format!("field {k}"),
+                msg: format!("{} values for {} vertices", f.len(), mesh.n_points()),
+            });
+        }
+        if let Some(v) = f.iter().position(|x| !x.is_finite()) {
+            return Err(Error::InvalidField {
+                name: format!("field {k}"),
+                msg: format!("non-finite value at vertex {v}"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Adapts `mesh` to the vertex metric field `metric` (004 §3.5): afterwards (if `converged`)
+/// every edge has metric length in `[l_min, l_max]` up to what collapses could not remove, and
+/// the elements have been flipped and smoothed toward `Q_ani = 1`. The P1 `fields` are carried
+/// through every operation (interpolated, or evaluated by `source` when it provides them); the
+/// metric at new vertices comes from `source` when it has one (`metric_at` returns `Some`), else
+/// it is interpolated log-Euclidean. The mesh is compacted at the end; metric and fields are
+/// renumbered with it.
+///
+/// Errors: an invalid mesh, a metric of the wrong length or not SPD (naming the vertex), a field
+/// of the wrong length or with NaN, invalid options.
+pub fn adapt(
+    mesh: &mut Mesh2,
+    metric: &mut Vec<Sym2>,
+    fields: &mut [Vec<f64>],
+    source: Option<&dyn MetricSource>,
+    opts: &AdaptOptions,
+) -> Result<AdaptReport> {
+    let t0 = Instant::now();
+    opts.validate()?;
+    validate_inputs(mesh, metric, fields)?;
+    let params = OpParams {
+        l_min: opts.l_min,
+        l_max: opts.l_max,
+        q_max: opts.q_max,
+    };
+    let mut rep = AdaptReport::default();
+    {
+        let mut ctx = Ctx::new(mesh, metric, fields, source, params);
+        let mut cand = Vec::new();
+        let mut run = |ctx: &mut Ctx, kind: PassKind, rep: &mut AdaptReport| -> Result<usize> {
+            let t = Instant::now();
+            let n = match kind {
+                PassKind::Split => split::pass(ctx, &mut cand),
+                PassKind::Collapse => collapse::pass(ctx),
+                PassKind::Flip => flip::pass(ctx),
+                PassKind::Smooth => smooth::pass(ctx),
+            };
+            match kind {
+                PassKind::Split => rep.splits += n,
+                PassKind::Collapse => rep.collapses += n,
+                PassKind::Flip => rep.flips += n,
+                PassKind::Smooth => rep.moves += n,
+            }
+            rep.passes.push(PassReport {
+                kind,
+                count: n,
+                seconds: t.elapsed().as_secs_f64(),
+            });
+            if opts.check_each_pass {
+                ctx.mesh.check()?;
+            }
+            Ok(n)
+        };
+        for _cycle in 0..opts.max_cycles {
+            rep.cycles += 1;
+            let mut ns = 0;
+            for _ in 0..64 {
+                let n = run(&mut ctx, PassKind::Split, &mut rep)?;
+                ns += n;
+                if n == 0 {
+                    break;
+                }
+                run(&mut ctx, PassKind::Flip, &mut rep)?;
+            }
+            let nc = run(&mut ctx, PassKind::Collapse, &mut rep)?;
+            run(&mut ctx, PassKind::Flip, &mut rep)?;
+            run(&mut ctx, PassKind::Smooth, &mut rep)?;
+            if ns + nc == 0 {
+                rep.converged = true;
+                break;
+            }
+        }
+        for _ in 0..opts.final_sweeps {
+            let nf = run(&mut ctx, PassKind::Flip, &mut rep)?;
+            let nm = run(&mut ctx, PassKind::Smooth, &mut rep)?;
+            if nf + nm == 0 {
+                break;
+            }
+        }
+    }
+    compact_with_data(mesh, metric, fields);
+    if opts.check_each_pass {
+        mesh.check()?;
+    }
+    rep.seconds = t0.elapsed().as_secs_f64();
+    Ok(rep)
+}
+
+/// `Mesh2::compact` plus the same renumbering of the metric and the fields.
+pub(crate) fn compact_with_data(mesh: &mut Mesh2, metric: &mut Vec<Sym2>, fields: &mut [Vec<f64>]) {
+    let vmap = mesh.compact();
+    let n = mesh.n_points();
+    let remap = |dst_len: usize, vmap: &[u32], f: &mut dyn FnMut(usize, usize)| {
+        for (old, &new) in vmap.iter().enumerate() {
+            if new != NONE && (new as usize) < dst_len {
+                f(new as usize, old);
+            }
+        }
+    };
+    let mut m2 = vec![Sym2::IDENTITY; n];
+    remap(n, &vmap, &mut |new, old| m2[new] = metric[old]);
+    *metric = m2;
+    for f in fields.iter_mut() {
+        let mut g = vec![0.0; n];
+        remap(n, &vmap, &mut |new, old| g[new] = f[old]);
+        *f = g;
+    }
+}

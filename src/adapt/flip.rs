@@ -1,0 +1,112 @@
+//! Edge flip (MMG `swapar_2d.c`, 004 §3.5): the diagonal of the convex quadrilateral formed by
+//! two triangles is swapped when that lowers the worse `Q_ani` of the pair. Boundary and labelled
+//! edges are never flipped, so curves and sub-domain labels are preserved; the area is preserved
+//! exactly (same quadrilateral).
+
+use super::topo::Ctx;
+use crate::geom::orient2d;
+use crate::mesh::{next, prev, NONE};
+
+/// Relative improvement of the worse quality a flip must bring (avoids cycling).
+const GAIN: f64 = 0.99;
+
+/// A planned flip of local edge `i` of triangle `t`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FlipPlan {
+    pub t: u32,
+    pub i: u8,
+}
+
+/// Pure check: whether flipping edge `(t, i)` is valid (convex quadrilateral, unlabelled interior
+/// edge) and lowers `max(Q_ani)` of the two triangles by at least 1%.
+pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
+    let mesh = &*ctx.mesh;
+    let tu = t as usize;
+    let t2 = mesh.neighbours[tu][i];
+    if t2 == NONE || mesh.edge_ref[tu][i] != 0 {
+        return None;
+    }
+    let t2u = t2 as usize;
+    let tri = mesh.tris[tu];
+    let (c, a, b) = (tri[i], tri[next(i)], tri[prev(i)]);
+    let j = mesh.mirror_edge(tu, t2u)?;
+    let d = mesh.tris[t2u][j];
+    let (pa, pb, pc, pd) = (ctx.p(a), ctx.p(b), ctx.p(c), ctx.p(d));
+    if orient2d(pc, pa, pd) <= 0.0 || orient2d(pc, pd, pb) <= 0.0 {
+        return None;
+    }
+    let q_old = ctx.q([c, a, b]).max(ctx.q([d, b, a]));
+    let q_new = ctx.q([c, a, d]).max(ctx.q([d, b, c]));
+    (q_new < GAIN * q_old).then_some(FlipPlan { t, i: i as u8 })
+}
+
+/// Applies a flip: `(c, a, b) + (d, b, a)` becomes `(c, a, d) + (d, b, c)`.
+pub fn apply(ctx: &mut Ctx, plan: &FlipPlan) {
+    let (t, i) = (plan.t, plan.i as usize);
+    let tu = t as usize;
+    let t2 = ctx.mesh.neighbours[tu][i];
+    let t2u = t2 as usize;
+    let tri = ctx.mesh.tris[tu];
+    let (c, a, b) = (tri[i], tri[next(i)], tri[prev(i)]);
+    let j = ctx.mesh.mirror_edge(tu, t2u).unwrap_or(0);
+    let d = ctx.mesh.tris[t2u][j];
+    let (nb1, rf1) = (ctx.mesh.neighbours[tu], ctx.mesh.edge_ref[tu]);
+    let (nb2, rf2) = (ctx.mesh.neighbours[t2u], ctx.mesh.edge_ref[t2u]);
+    let (n_bc, r_bc, n_ca, r_ca) = (nb1[next(i)], rf1[next(i)], nb1[prev(i)], rf1[prev(i)]);
+    let (n_ad, r_ad, n_db, r_db) = (nb2[next(j)], rf2[next(j)], nb2[prev(j)], rf2[prev(j)]);
+    let j_ad = if n_ad != NONE {
+        ctx.mesh.mirror_edge(t2u, n_ad as usize).unwrap_or(0)
+    } else {
+        0
+    };
+    let j_bc = if n_bc != NONE {
+        ctx.mesh.mirror_edge(tu, n_bc as usize).unwrap_or(0)
+    } else {
+        0
+    };
+    ctx.mesh.tris[tu] = [c, a, d];
+    ctx.mesh.tris[t2u] = [d, b, c];
+    ctx.mesh.edge_ref[tu] = [r_ad, 0, r_ca];
+    ctx.mesh.edge_ref[t2u] = [r_bc, 0, r_db];
+    ctx.mesh.neighbours[tu] = [NONE, t2, n_ca];
+    ctx.mesh.neighbours[t2u] = [NONE, t, n_db];
+    ctx.link(t, 0, n_ad, j_ad);
+    ctx.link(t2, 0, n_bc, j_bc);
+    if ctx.mesh.vert_tri[a as usize] == t2 {
+        ctx.mesh.vert_tri[a as usize] = t;
+    }
+    if ctx.mesh.vert_tri[b as usize] == t {
+        ctx.mesh.vert_tri[b as usize] = t2;
+    }
+    ctx.tstamp[tu] = ctx.gen;
+    ctx.tstamp[t2u] = ctx.gen;
+}
+
+/// One flip sweep over the interior edges next to triangles modified since the last sweep. Returns the number of flips.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    let since = ctx.last_flip;
+    ctx.new_pass();
+    ctx.last_flip = ctx.gen;
+    let nt = ctx.mesh.n_tris();
+    let mut count = 0;
+    for t in 0..nt {
+        if ctx.mesh.is_deleted(t) {
+            continue;
+        }
+        for i in 0..3 {
+            let nb = ctx.mesh.neighbours[t][i];
+            if nb == NONE || (nb as usize) < t {
+                continue;
+            }
+            // Only edges next to a triangle modified since the last flip pass.
+            if ctx.tstamp[t] < since && ctx.tstamp[nb as usize] < since {
+                continue;
+            }
+            if let Some(plan) = check(ctx, t as u32, i) {
+                apply(ctx, &plan);
+                count += 1;
+            }
+        }
+    }
+    count
+}

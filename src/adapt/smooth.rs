@@ -1,0 +1,139 @@
+//! Vertex relocation (MMG `movpt_2d.c`, 004 §3.5): a free vertex moves toward the average of the
+//! ideal positions its ring offers, i.e. for each triangle `(v, a, b)` of its fan the apex of the
+//! unit equilateral triangle on `(a, b)` in the element metric `M`:
+//!
+//! `x* = (a + b)/2 + (sqrt(3)/2) / sqrt(det M) · adj(M) · R90 (b - a)`
+//!
+//! (the image of the Euclidean apex through `M^{-1/2}`; `R90` is the rotation by +90°). The move
+//! is tried at full, half and quarter step and kept only if no triangle inverts and the worst
+//! `Q_ani` of the fan decreases. The metric and fields at the new position come from the source
+//! or are interpolated in the old fan.
+
+use super::topo::{local, Ctx, VClass};
+use crate::geom::{barycentric, orient2d, DVec2};
+use crate::mesh::{next, prev, NONE};
+use crate::metric::Sym2;
+
+/// A planned move of vertex `v` to `p`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MovePlan {
+    pub v: u32,
+    pub p: DVec2,
+}
+
+/// The ideal apex position opposite the edge `a -> b` in the metric `m` (see the module docs).
+#[inline]
+pub fn ideal_apex(a: DVec2, b: DVec2, m: &Sym2) -> DVec2 {
+    let e = b - a;
+    let r = DVec2::new(-e.y, e.x);
+    let adj_r = DVec2::new(m.yy * r.x - m.xy * r.y, -m.xy * r.x + m.xx * r.y);
+    0.5 * (a + b) + (0.5 * 3f64.sqrt() / m.det().sqrt()) * adj_r
+}
+
+/// Pure check for a free vertex `v` (fan loaded in `ctx.fan`).
+pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
+    if ctx.vclass(v) != VClass::Free || ctx.fan.len() < 3 {
+        return None;
+    }
+    let mesh = &*ctx.mesh;
+    let pv = ctx.p(v);
+    let mv = *ctx.m(v);
+    let lv = ctx.logm[v as usize];
+    let mut target = DVec2::ZERO;
+    let mut q_old: f64 = 1.0;
+    for &t in &ctx.fan {
+        let tri = mesh.tris[t as usize];
+        let iv = local(tri, v);
+        let (a, b) = (tri[next(iv)], tri[prev(iv)]);
+        let (ma, mb) = (ctx.m(a), ctx.m(b));
+        let m = Sym2::new(
+            (mv.xx + ma.xx + mb.xx) / 3.0,
+            (mv.xy + ma.xy + mb.xy) / 3.0,
+            (mv.yy + ma.yy + mb.yy) / 3.0,
+        );
+        target += ideal_apex(ctx.p(a), ctx.p(b), &m);
+        q_old = q_old.max(ctx.q(tri));
+    }
+    target /= ctx.fan.len() as f64;
+    if !target.is_finite() {
+        return None;
+    }
+    for omega in [1.0, 0.5, 0.25] {
+        let p = pv + omega * (target - pv);
+        if p == pv {
+            return None;
+        }
+        let mut ok = true;
+        let mut q_new: f64 = 1.0;
+        for &t in &ctx.fan {
+            let tri = mesh.tris[t as usize];
+            let iv = local(tri, v);
+            let (a, b) = (tri[next(iv)], tri[prev(iv)]);
+            if orient2d(p, ctx.p(a), ctx.p(b)) <= 0.0 {
+                ok = false;
+                break;
+            }
+            q_new = q_new.max(ctx.q_moved(tri, v, p, &lv));
+            if q_new >= q_old {
+                ok = false;
+                break;
+            }
+        }
+        if ok && q_new < 0.999 * q_old {
+            return Some(MovePlan { v, p });
+        }
+    }
+    None
+}
+
+/// Applies a move: the metric and fields at the new position come from the source, else from
+/// interpolation in the old fan triangle containing the new position.
+pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
+    let v = plan.v;
+    let mut verts = [v; 3];
+    let mut w = [1.0, 0.0, 0.0];
+    for &t in &ctx.fan {
+        let tri = ctx.mesh.tris[t as usize];
+        let [a, b, c] = tri.map(|x| ctx.p(x));
+        let l = barycentric(a, b, c, plan.p);
+        if l.iter().all(|&x| x >= -1e-12) {
+            verts = tri;
+            w = l;
+            break;
+        }
+    }
+    let m = ctx.sample(plan.p, &verts, &w);
+    let vu = v as usize;
+    ctx.mesh.points[vu] = plan.p;
+    ctx.metric[vu] = m;
+    ctx.logm[vu] = m.log();
+    for &t in &ctx.fan {
+        ctx.tstamp[t as usize] = ctx.gen;
+    }
+    for (f, &x) in ctx.fields.iter_mut().zip(&ctx.scratch_f) {
+        f[vu] = x;
+    }
+}
+
+/// One smoothing sweep over the free vertices whose ball changed since the last sweep. Returns the number of moves.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    let since = ctx.last_smooth;
+    ctx.new_pass();
+    ctx.last_smooth = ctx.gen;
+    let mut count = 0;
+    for v in 0..ctx.mesh.n_points() as u32 {
+        if ctx.mesh.vert_tri[v as usize] == NONE {
+            continue;
+        }
+        ctx.load_fan(v);
+        // Only vertices whose ball changed since the last smoothing pass.
+        if ctx.fan.iter().all(|&t| ctx.tstamp[t as usize] < since) {
+            continue;
+        }
+        if let Some(plan) = check_loaded(ctx, v) {
+            apply(ctx, &plan);
+            count += 1;
+        }
+    }
+    count
+}

@@ -1,0 +1,246 @@
+//! The operator context: the mesh, its metric and P1 fields, an optional metric source, the
+//! operator parameters and a per-pass workspace (scratch kept apart from the mesh data).
+//! Also the small topological helpers the operators share (vertex class, linking triangles).
+
+use super::kernel;
+use super::sources::MetricSource;
+use crate::geom::DVec2;
+use crate::mesh::{next, prev, Mesh2, NONE};
+use crate::metric::Sym2;
+
+/// Parameters the operators read (copied from [`super::AdaptOptions`]).
+#[derive(Debug, Clone, Copy)]
+pub struct OpParams {
+    /// Edges shorter than this (metric length) are collapsed.
+    pub l_min: f64,
+    /// Edges longer than this are split.
+    pub l_max: f64,
+    /// Quality floor: an operation may not create a triangle with `Q_ani` above this unless the
+    /// triangles it replaces were already worse.
+    pub q_max: f64,
+}
+
+/// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
+/// and the two neighbours on the curve), or nowhere (`Fixed`: corner, required, junction).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum VClass {
+    Free,
+    Curve { label: i32, ends: [u32; 2] },
+    Fixed,
+}
+
+/// Operator context over borrowed mesh data. Build one with [`Ctx::new`] to call the operators
+/// (`split::pass`, `collapse::pass`, ...) directly; [`super::adapt`] does this for you.
+pub struct Ctx<'a> {
+    pub mesh: &'a mut Mesh2,
+    pub metric: &'a mut Vec<Sym2>,
+    pub fields: &'a mut [Vec<f64>],
+    pub source: Option<&'a dyn MetricSource>,
+    pub params: OpParams,
+    /// Per-triangle pass stamp (a triangle touched in the current pass has `tstamp == gen`).
+    pub(crate) tstamp: Vec<u32>,
+    /// Per-vertex pass stamp.
+    pub(crate) vstamp: Vec<u32>,
+    pub(crate) gen: u32,
+    /// Logarithms of the vertex metrics (element metrics are `exp` of their mean).
+    pub(crate) logm: Vec<Sym2>,
+    /// Generation of the last flip / smoothing pass: only triangles modified since are examined.
+    pub(crate) last_flip: u32,
+    pub(crate) last_smooth: u32,
+    pub(crate) fan: Vec<u32>,
+    pub(crate) fan2: Vec<u32>,
+    pub(crate) scratch_f: Vec<f64>,
+}
+
+impl<'a> Ctx<'a> {
+    /// A context; the caller guarantees `metric.len() == mesh.n_points()` and the same for each
+    /// field (the driver validates this).
+    pub fn new(
+        mesh: &'a mut Mesh2,
+        metric: &'a mut Vec<Sym2>,
+        fields: &'a mut [Vec<f64>],
+        source: Option<&'a dyn MetricSource>,
+        params: OpParams,
+    ) -> Ctx<'a> {
+        let (nt, nv) = (mesh.n_tris(), mesh.n_points());
+        let nf = fields.len();
+        use rayon::prelude::*;
+        let logm = metric.par_iter().map(|m| m.log()).collect();
+        Ctx {
+            mesh,
+            metric,
+            fields,
+            source,
+            params,
+            tstamp: vec![0; nt],
+            vstamp: vec![0; nv],
+            gen: 1,
+            logm,
+            last_flip: 0,
+            last_smooth: 0,
+            fan: Vec::with_capacity(16),
+            fan2: Vec::with_capacity(16),
+            scratch_f: vec![0.0; nf],
+        }
+    }
+
+    /// Starts a new pass: every stamp becomes stale.
+    pub(crate) fn new_pass(&mut self) {
+        // 2^32 passes never happen in practice; saturate rather than wrap.
+        self.gen = self.gen.saturating_add(1);
+    }
+
+    #[inline]
+    pub(crate) fn p(&self, v: u32) -> DVec2 {
+        self.mesh.points[v as usize]
+    }
+
+    #[inline]
+    pub(crate) fn m(&self, v: u32) -> &Sym2 {
+        &self.metric[v as usize]
+    }
+
+    /// Metric length of the edge `(a, b)`.
+    #[inline]
+    pub(crate) fn len(&self, a: u32, b: u32) -> f64 {
+        kernel::edge_length(self.p(a), self.p(b), self.m(a), self.m(b))
+    }
+
+    /// `Q_ani` of the triangle `(a, b, c)` at its current positions.
+    #[inline]
+    pub(crate) fn q(&self, tri: [u32; 3]) -> f64 {
+        kernel::q_ani_log(tri.map(|v| self.p(v)), tri.map(|v| &self.logm[v as usize]))
+    }
+
+    /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with log-metric `lv`.
+    #[inline]
+    pub(crate) fn q_moved(&self, tri: [u32; 3], v: u32, pv: DVec2, lv: &Sym2) -> f64 {
+        let p = tri.map(|w| if w == v { pv } else { self.p(w) });
+        let l = tri.map(|w| if w == v { lv } else { &self.logm[w as usize] });
+        kernel::q_ani_log(p, l)
+    }
+
+    /// Fills `self.fan` with the counter-clockwise fan of `v`.
+    pub(crate) fn load_fan(&mut self, v: u32) {
+        let mut fan = std::mem::take(&mut self.fan);
+        fan.clear();
+        self.mesh.for_each_fan_triangle(v, |t| fan.push(t));
+        self.fan = fan;
+    }
+
+    /// The class of `v` (its fan must be loaded in `self.fan`).
+    pub(crate) fn vclass(&self, v: u32) -> VClass {
+        let vu = v as usize;
+        if self.mesh.corner[vu] || self.mesh.required[vu] {
+            return VClass::Fixed;
+        }
+        let mut n = 0;
+        let mut ends = [NONE; 2];
+        let mut labels = [0i32; 2];
+        for &t in &self.fan {
+            let t = t as usize;
+            let tri = self.mesh.tris[t];
+            let i = local(tri, v);
+            // Edge v -> tri[next(i)] is local prev(i); edge v -> tri[prev(i)] is local next(i).
+            for (e, w) in [(prev(i), tri[next(i)]), (next(i), tri[prev(i)])] {
+                let nb = self.mesh.neighbours[t][e];
+                let lab = self.mesh.edge_ref[t][e];
+                // An interior labelled edge is seen from both sides; count it once.
+                let counted = nb == NONE || (lab != 0 && e == prev(i));
+                if counted {
+                    if n < 2 {
+                        ends[n] = w;
+                        labels[n] = lab;
+                    }
+                    n += 1;
+                }
+            }
+        }
+        match n {
+            0 => VClass::Free,
+            2 if labels[0] == labels[1] => VClass::Curve {
+                label: labels[0],
+                ends,
+            },
+            _ => VClass::Fixed,
+        }
+    }
+
+    /// Appends a vertex at `p` with metric `m` and field values from `self.scratch_f`.
+    pub(crate) fn push_vertex(&mut self, p: DVec2, m: Sym2, vref: i32) -> u32 {
+        let v = self.mesh.points.len() as u32;
+        self.mesh.points.push(p);
+        self.mesh.vert_ref.push(vref);
+        self.mesh.corner.push(false);
+        self.mesh.required.push(false);
+        self.mesh.vert_tri.push(NONE);
+        self.metric.push(m);
+        self.logm.push(m.log());
+        for (f, &x) in self.fields.iter_mut().zip(&self.scratch_f) {
+            f.push(x);
+        }
+        self.vstamp.push(self.gen);
+        v
+    }
+
+    /// Appends a triangle (neighbours unset) and returns its index.
+    pub(crate) fn push_tri(&mut self, tri: [u32; 3], tref: i32) -> u32 {
+        let t = self.mesh.tris.len() as u32;
+        self.mesh.tris.push(tri);
+        self.mesh.neighbours.push([NONE; 3]);
+        self.mesh.edge_ref.push([0; 3]);
+        self.mesh.tri_ref.push(tref);
+        self.tstamp.push(self.gen);
+        t
+    }
+
+    /// Makes `t` (local edge `i`) and `u` (local edge `j`) neighbours; `u == NONE` makes the edge
+    /// a boundary edge.
+    #[inline]
+    pub(crate) fn link(&mut self, t: u32, i: usize, u: u32, j: usize) {
+        self.mesh.neighbours[t as usize][i] = u;
+        if u != NONE {
+            self.mesh.neighbours[u as usize][j] = t;
+        }
+    }
+
+    /// Metric and field values at `p` from the source, or interpolated with `weights` over
+    /// `verts` (metric log-Euclidean, fields linear). Field values go to `self.scratch_f`.
+    pub(crate) fn sample(&mut self, p: DVec2, verts: &[u32], weights: &[f64]) -> Sym2 {
+        let (m, fields_done) = match self.source {
+            Some(s) => (s.metric_at(p), s.fields_at(p, &mut self.scratch_f)),
+            None => (None, false),
+        };
+        if !fields_done {
+            for (k, f) in self.fields.iter().enumerate() {
+                self.scratch_f[k] = verts
+                    .iter()
+                    .zip(weights)
+                    .map(|(&v, &w)| w * f[v as usize])
+                    .sum();
+            }
+        }
+        match m {
+            Some(m) => m,
+            None => {
+                let mut w: [(f64, &Sym2); 3] = [(0.0, &self.metric[0]); 3];
+                for (k, (&v, &wt)) in verts.iter().zip(weights).take(3).enumerate() {
+                    w[k] = (wt, &self.metric[v as usize]);
+                }
+                kernel::interpolate(&w[..verts.len().min(3)])
+            }
+        }
+    }
+}
+
+/// Local index of `v` in `tri` (the caller knows it is there).
+#[inline]
+pub(crate) fn local(tri: [u32; 3], v: u32) -> usize {
+    if tri[0] == v {
+        0
+    } else if tri[1] == v {
+        1
+    } else {
+        2
+    }
+}

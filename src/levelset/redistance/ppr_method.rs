@@ -1,0 +1,254 @@
+//! PPR redistancing (003 §6.3): initialisation phase by oblique projection along the recovered
+//! quasi-normal field on the cells cut by the zero level, then an extension phase by fast
+//! marching to every node.
+//!
+//! Steps (003 §8, list after Table 8.4's description):
+//! 1. the cut cells `T_{Γ_h}` are found from the nodal signs (a cell is cut when its nodal values
+//!    take both signs or one is 0);
+//! 2. the PPR recovered gradient `G_h φ_h` ([`super::ppr`]) and `n_h = G_h φ_h / |G_h φ_h|` (6.6);
+//! 3. for every node `v ∈ N(T_{Γ_h})`, `d_h(v)` by (6.10)–(6.11) ([`super::oblique`]);
+//! 4. nodal interpolation `I_h d_h` (6.7) — the values at those nodes;
+//! 5. (extension) fast marching ([`super::fmm`]) from those nodes to all others, on the P1
+//!    sub-mesh of the nodes for P2; the sign of `φ_h` is kept outside the band.
+
+use rayon::prelude::*;
+
+use super::fmm::fast_marching;
+use super::oblique::{project, ObliqueParams};
+use super::ppr::Recovery;
+use super::simplices::{norm, Simplices};
+use crate::error::{Error, Result};
+use crate::fem::lagrange::P2Dofs;
+use crate::geom::DVec3;
+use crate::mesh::Mesh2;
+
+/// Options of [`redistance_ppr`] / [`redistance_ppr_3d`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PprOptions {
+    /// Polynomial degree `k` of the field (1 = P1, 2 = P2).
+    pub degree: usize,
+    /// Relative tolerance (times the local mesh size) of the line search and of (6.11).
+    pub tol: f64,
+    /// Maximum number of oblique iterations (6.11) per node.
+    pub max_outer: usize,
+    /// Maximum number of Newton steps (6.10) per line search.
+    pub max_newton: usize,
+    /// Limit each Newton step to the local mesh size (the damped variant of 003 §6.3).
+    pub damped: bool,
+    /// Run the extension phase (fast marching); otherwise nodes off the band keep `φ_h`.
+    pub extend: bool,
+}
+
+impl Default for PprOptions {
+    fn default() -> Self {
+        PprOptions {
+            degree: 1,
+            tol: 1e-12,
+            max_outer: 100,
+            max_newton: 50,
+            damped: true,
+            extend: true,
+        }
+    }
+}
+
+/// Statistics of one redistancing.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PprReport {
+    /// Cells cut by the zero level, `T_{Γ_h}`.
+    pub cut_cells: usize,
+    /// Nodes of the cut cells, `N(T_{Γ_h})` (the initialisation band).
+    pub band_nodes: usize,
+    /// Largest number of oblique iterations (6.11) used by one node.
+    pub max_outer_iterations: usize,
+    /// Band nodes where (6.10)–(6.11) did not reach the tolerance (they keep the last iterate, or
+    /// `φ_h / |G_h φ_h|` when the projection failed outright).
+    pub not_converged: usize,
+    /// Line searches that needed the bracketing fallback.
+    pub bracketed: usize,
+    /// Vertex fits that needed the PPR fallback (second ring or lower degree).
+    pub ppr_fallbacks: usize,
+    /// `e^∇_∞ = max_{T ∈ T_{Γ_h}} | (|T|^{-1} ∫_T |∇ I_h d_h|²)^{1/2} - 1 |` (003 §8).
+    pub e_grad: f64,
+}
+
+/// Result of a redistancing: values per node (vertices, then edge dofs for P2, numbered as
+/// [`P2Dofs`]), the band flags, and the report.
+#[derive(Debug, Clone)]
+pub struct PprOutput {
+    pub values: Vec<f64>,
+    /// `band[n]` = node `n` belongs to a cut cell (its value comes from the oblique projection).
+    pub band: Vec<bool>,
+    pub report: PprReport,
+}
+
+fn validate(phi: &[f64], n_nodes: usize, opts: &PprOptions) -> Result<()> {
+    if opts.degree != 1 && opts.degree != 2 {
+        return Err(Error::InvalidInput(format!(
+            "PPR redistancing: degree must be 1 or 2 (got {})",
+            opts.degree
+        )));
+    }
+    if opts.tol.is_nan() || opts.tol <= 0.0 || opts.max_outer == 0 || opts.max_newton == 0 {
+        return Err(Error::InvalidInput(
+            "PPR redistancing: tol, max_outer and max_newton must be positive".into(),
+        ));
+    }
+    super::geometric::check_field(phi, n_nodes, "phi")
+}
+
+/// PPR redistancing of a P1 or P2 field on a triangle mesh (003 §6). For `degree = 2`, `phi` is
+/// indexed by [`P2Dofs::for_mesh2`]. Errors: [`Error::InvalidField`] (length, NaN),
+/// [`Error::EmptyLevelSet`] (no cut cell), [`Error::InvalidInput`] (options).
+pub fn redistance_ppr(mesh: &Mesh2, phi: &[f64], opts: &PprOptions) -> Result<PprOutput> {
+    let n_nodes = if opts.degree == 2 {
+        P2Dofs::for_mesh2(mesh).n_dofs()
+    } else {
+        mesh.n_points()
+    };
+    validate(phi, n_nodes, opts)?;
+    let pts = mesh.points.iter().map(|p| [p.x, p.y, 0.0]).collect();
+    let cells = mesh.live_tris().flat_map(|t| mesh.tris[t]).collect();
+    let sx = Simplices::new(2, pts, cells, opts.degree)?;
+    run(&sx, phi, opts)
+}
+
+/// PPR redistancing of a P1 or P2 field on a tetrahedral mesh (003 §6), `phi` indexed by vertex
+/// then by [`P2Dofs::for_tets`] edge dofs. Errors as [`redistance_ppr`].
+pub fn redistance_ppr_3d(
+    points: &[DVec3],
+    tets: &[[u32; 4]],
+    phi: &[f64],
+    opts: &PprOptions,
+) -> Result<PprOutput> {
+    let n_nodes = if opts.degree == 2 {
+        P2Dofs::for_tets(tets, points.len()).n_dofs()
+    } else {
+        points.len()
+    };
+    validate(phi, n_nodes, opts)?;
+    let pts = points.iter().map(|p| p.to_array()).collect();
+    let cells = tets.iter().flatten().copied().collect();
+    let sx = Simplices::new(3, pts, cells, opts.degree)?;
+    run(&sx, phi, opts)
+}
+
+/// Whether a cell with these nodal values is cut by the zero level.
+fn is_cut(vals: impl Iterator<Item = f64>) -> bool {
+    let (mut neg, mut pos, mut zero) = (false, false, false);
+    for v in vals {
+        neg |= v < 0.0;
+        pos |= v > 0.0;
+        zero |= v == 0.0;
+    }
+    (neg && pos) || zero
+}
+
+fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions) -> Result<PprOutput> {
+    let nn = sx.n_nodes();
+    let cut: Vec<u32> = (0..sx.n_cells() as u32)
+        .filter(|&c| is_cut(sx.nodes(c as usize).iter().map(|&n| phi[n as usize])))
+        .collect();
+    if cut.is_empty() {
+        return Err(Error::EmptyLevelSet(format!(
+            "the field has no zero crossing on the {} cells of the mesh",
+            sx.n_cells()
+        )));
+    }
+    // Band nodes with the smallest cut cell around each (its size scales the tolerances).
+    let mut h = vec![f64::INFINITY; nn];
+    let mut home = vec![u32::MAX; nn];
+    for &c in &cut {
+        let d = sx.diameter(c as usize);
+        for &n in sx.nodes(c as usize) {
+            if d < h[n as usize] {
+                h[n as usize] = d;
+                home[n as usize] = c;
+            }
+        }
+    }
+    let band_nodes: Vec<u32> = (0..nn as u32)
+        .filter(|&n| home[n as usize] != u32::MAX)
+        .collect();
+    let rec = Recovery::new(sx, phi);
+    let params = ObliqueParams {
+        tol: opts.tol,
+        max_outer: opts.max_outer,
+        max_newton: opts.max_newton,
+        damped: opts.damped,
+    };
+    let proj: Vec<_> = band_nodes
+        .par_iter()
+        .map(|&n| {
+            let i = n as usize;
+            project(
+                sx,
+                phi,
+                &rec,
+                &sx.node_points[i],
+                phi[i],
+                home[i],
+                h[i],
+                &params,
+            )
+        })
+        .collect();
+    let mut report = PprReport {
+        cut_cells: cut.len(),
+        band_nodes: band_nodes.len(),
+        ..PprReport::default()
+    };
+    let mut values = phi.to_vec();
+    let mut band = vec![false; nn];
+    for (&n, p) in band_nodes.iter().zip(&proj) {
+        values[n as usize] = p.d;
+        band[n as usize] = true;
+        report.max_outer_iterations = report.max_outer_iterations.max(p.outer_iterations);
+        report.not_converged += usize::from(!p.converged);
+        report.bracketed += usize::from(p.bracketed);
+    }
+    report.ppr_fallbacks = rec.fallbacks.load(std::sync::atomic::Ordering::Relaxed);
+    report.e_grad = cut
+        .iter()
+        .map(|&c| (mean_grad_norm(sx, c as usize, &values) - 1.0).abs())
+        .fold(0.0, f64::max);
+    if opts.extend {
+        let known: Vec<Option<f64>> = (0..nn).map(|n| band[n].then(|| values[n].abs())).collect();
+        let dist = fast_marching(&sx.node_points, &sx.node_cells(), sx.nv, &known);
+        for n in 0..nn {
+            if !band[n] && dist[n].is_finite() {
+                values[n] = dist[n].copysign(phi[n]);
+            }
+        }
+    }
+    Ok(PprOutput {
+        values,
+        band,
+        report,
+    })
+}
+
+/// `(|T|^{-1} ∫_T |∇f|²)^{1/2}` on cell `c`, exact for P1 and P2 (degree-2 quadrature).
+pub(crate) fn mean_grad_norm(sx: &Simplices, c: usize, f: &[f64]) -> f64 {
+    if sx.degree == 1 {
+        return norm(&sx.grad_in(c, &[0.25; 4], f));
+    }
+    let pts: Vec<[f64; 4]> = if sx.dim == 2 {
+        vec![
+            [0.5, 0.5, 0.0, 0.0],
+            [0.0, 0.5, 0.5, 0.0],
+            [0.5, 0.0, 0.5, 0.0],
+        ]
+    } else {
+        let (a, b) = (0.585_410_196_624_968_5, 0.138_196_601_125_010_5);
+        vec![[a, b, b, b], [b, a, b, b], [b, b, a, b], [b, b, b, a]]
+    };
+    let w = 1.0 / pts.len() as f64;
+    pts.iter()
+        .map(|l| {
+            let g = sx.grad_in(c, l, f);
+            w * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2])
+        })
+        .sum::<f64>()
+        .sqrt()
+}
