@@ -1,6 +1,7 @@
 //! Command definitions (clap) and dispatch. Each command lives in its own file and only calls
 //! the library's public API.
 
+mod convert;
 mod info;
 
 use anisomesh::Result;
@@ -25,12 +26,20 @@ enum Command {
         #[arg(long)]
         sol: Option<PathBuf>,
     },
+    /// Converts a mesh between formats, chosen by extension (.mesh, .msh -> .mesh, .msh, .vtu).
+    Convert {
+        /// Input mesh (.mesh or .msh).
+        input: PathBuf,
+        /// Output mesh (.mesh, .msh or .vtu).
+        output: PathBuf,
+    },
 }
 
 /// Runs the parsed command; with no command, the default adaptation job.
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Some(Command::Info { file, sol }) => info::run(&file, sol.as_deref()),
+        Some(Command::Convert { input, output }) => convert::run(&input, &output),
         None => info::run(std::path::Path::new("meshes/square.mesh"), None),
     }
 }
