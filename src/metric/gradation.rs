@@ -22,6 +22,10 @@
 //! ```
 //!
 //! with `h_x(v) = 1/sqrt(v^T M_x v)` the size at `x` along the unit vector `v`.
+//!
+//! Note: per edge, `η h = h + |e| ln β` for an isotropic size `h`, so metric-space gradation lets
+//! sizes grow *linearly* with distance, `h(x) <= h_0 + x ln β` (tested exactly on a strip), not
+//! geometrically; `β` is the growth factor per unit metric length at the small end.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
