@@ -3,6 +3,7 @@
 
 mod convert;
 mod info;
+mod shape;
 
 use anisomesh::Result;
 use clap::{Parser, Subcommand};
@@ -33,6 +34,21 @@ enum Command {
         /// Output mesh (.mesh, .msh or .vtu).
         output: PathBuf,
     },
+    /// Evaluates a level set on a mesh's vertices and writes it (.sol or .vtu).
+    Shape {
+        /// A built-in shape: circle, zalesak or flower.
+        #[arg(long)]
+        name: Option<String>,
+        /// A user expression in x and y, e.g. "x^2 + y^2 - 0.25" (negative inside).
+        #[arg(long)]
+        expr: Option<String>,
+        /// The mesh (.mesh or .msh).
+        #[arg(long)]
+        mesh: PathBuf,
+        /// Output file (.sol or .vtu).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
 }
 
 /// Runs the parsed command; with no command, the default adaptation job.
@@ -40,6 +56,12 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Some(Command::Info { file, sol }) => info::run(&file, sol.as_deref()),
         Some(Command::Convert { input, output }) => convert::run(&input, &output),
+        Some(Command::Shape {
+            name,
+            expr,
+            mesh,
+            output,
+        }) => shape::run(name.as_deref(), expr.as_deref(), &mesh, &output),
         None => info::run(std::path::Path::new("meshes/square.mesh"), None),
     }
 }
