@@ -22,12 +22,17 @@ mod topo;
 
 pub mod collapse;
 pub mod flip;
+pub mod insert;
 pub mod smooth;
 pub mod split;
 
 mod driver;
+mod report;
+mod shape;
 pub mod sources;
 
-pub use driver::{adapt, AdaptOptions, AdaptReport, PassKind, PassReport};
-pub use sources::{AnalyticLevelSetSource, LevelSetMetric, MetricSource, NoSource};
+pub use driver::{adapt, validate_inputs, AdaptOptions, AdaptReport, PassKind, PassReport};
+pub use report::{mesh_report, MeshReport};
+pub use shape::{adapt_to_shape, ShapeAdaptOptions};
+pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
 pub use topo::{Ctx, OpParams, VClass};
