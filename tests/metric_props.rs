@@ -1,8 +1,9 @@
 //! Property tests of the metric mathematics (`anisomesh::metric`): intersection, log-Euclidean
-//! interpolation, bounding, edge length and `Q_ani` (004 §3.3–3.5). 256 random cases each.
+//! interpolation, bounding, edge length and `Q_ani` (004 §3.3–3.5), and the 3D `Sym3`. 256 random
+//! cases each.
 
 use anisomesh::metric::{
-    edge_length, interpolate_log, intersect, lerp_log, max_form_ratio, q_ani, Sym2,
+    edge_length, interpolate_log, intersect, lerp_log, max_form_ratio, q_ani, Sym2, Sym3,
 };
 use anisomesh::DVec2;
 use proptest::prelude::*;
@@ -171,5 +172,46 @@ proptest! {
         let q2 = q_ani(tri.map(map), &m2);
         let tol = 1e-12 + 1e-14 * (kappa(&m) + kappa(&m2));
         prop_assert!((q - q2).abs() <= tol * q, "{q} vs {q2}");
+    }
+}
+
+/// A random SPD 3D metric: eigenvalues 10^[-2, 6] in a random rotation (ratios up to 1e8).
+fn spd3() -> impl Strategy<Value = Sym3> {
+    (
+        prop::array::uniform3(-3.2..3.2f64),
+        prop::array::uniform3(-2.0..6.0f64),
+    )
+        .prop_map(|(a, l)| {
+            let r = glam::DMat3::from_euler(glam::EulerRot::ZYX, a[0], a[1], a[2]);
+            Sym3::from_eigen(l.map(|x| 10f64.powf(x)), [r.x_axis, r.y_axis, r.z_axis])
+        })
+}
+
+fn kappa3(m: &Sym3) -> f64 {
+    let (l, _) = m.eigen();
+    l[2] / l[0]
+}
+
+proptest! {
+    #![proptest_config(cfg())]
+
+    /// `Sym3`: the eigen-decomposition reconstructs, the intersection is SPD and inside both unit
+    /// balls, `A ∩ A = A`, and `exp(log A) = A`.
+    #[test]
+    fn sym3_eigen_intersection_log(a in spd3(), b in spd3(), dirs in prop::collection::vec(prop::array::uniform3(-1.0..1.0f64), 16)) {
+        let (l, v) = a.eigen();
+        prop_assert!(l[0] <= l[1] && l[1] <= l[2]);
+        prop_assert!(Sym3::from_eigen(l, v).sub(&a).norm() < 1e-14 * a.norm());
+        let r = a.intersect(&b);
+        prop_assert!(r.is_spd(), "{r:?}");
+        for d in dirs {
+            let u = glam::DVec3::from_array(d);
+            prop_assume!(u.length() > 1e-3);
+            let need = a.quad(u).max(b.quad(u));
+            prop_assert!(r.quad(u) >= need * (1.0 - 1e-9) - 1e-14 * r.norm());
+        }
+        let tol = 1e-12 + 1e-14 * kappa3(&a);
+        prop_assert!(a.intersect(&a).sub(&a).norm() < tol * a.norm());
+        prop_assert!(a.log().exp().sub(&a).norm() < tol * a.norm());
     }
 }

@@ -8,6 +8,7 @@
 //! - [`mass_correction`]: constant shift restoring the enclosed area (004 §5.1);
 //! - [`fixed_point`]: the transient fixed-point adaptation over a period (004 §3.5).
 
+pub mod adapter;
 pub mod characteristics;
 pub mod evaluate;
 pub mod fixed_point;
@@ -16,6 +17,7 @@ pub(crate) mod interim;
 pub mod mass_correction;
 pub mod transfer;
 
+pub use adapter::LevelSetAdapter;
 pub use characteristics::{foot, FootOptions, FootScheme, Rotation, Velocity};
 pub use evaluate::{Derivatives, FieldEvaluator, Inflow, Interpolation};
 pub use fixed_point::{advance_period, Adapter, FixedPointOptions, IdentityAdapter, PeriodResult};

@@ -9,6 +9,8 @@
 //! without mass correction at about 6,500 vertices per adapted mesh), and the distance between
 //! the final and the exact interface.
 
+use crate::adapt::{AdaptOptions, LevelSetMetric};
+use crate::advect::adapter::LevelSetAdapter;
 use crate::advect::fixed_point::{advance_period, Adapter, FixedPointOptions};
 use crate::advect::{self, AdvectOptions, Rotation};
 use crate::error::{Error, Result};
@@ -114,8 +116,13 @@ impl SlottedDisk {
 pub enum ZalesakMesh {
     /// A fixed uniform `n x n` grid of `[-2, 2]²` (union-jack diagonals).
     Uniform { n: usize },
-    /// Anisotropic adaptation (004 §3.5) with the transient fixed point.
-    Adapted { hmin: f64, stretching: f64 },
+    /// Adaptation (004 §3.5) with the transient fixed point: sizes in `[hmin, hmin *
+    /// stretching]`, anisotropic (004 eq. (6)) or its isotropic variant.
+    Adapted {
+        hmin: f64,
+        stretching: f64,
+        isotropic: bool,
+    },
 }
 
 /// Options of the run (defaults as in 004 §5.1).
@@ -126,6 +133,8 @@ pub struct ZalesakOptions {
     pub periods: usize,
     /// Revolutions (1 = back to the start).
     pub revolutions: f64,
+    /// Interface error bound ε of the level-set metric (004 eq. (6)); sets the vertex count.
+    pub metric_eps: f64,
     /// Fixed-point iterations per period (adapted meshes only).
     pub fixed_point_iterations: usize,
     /// The advection step (foot scheme, evaluation, form).
@@ -144,7 +153,9 @@ impl Default for ZalesakOptions {
             mesh: ZalesakMesh::Adapted {
                 hmin: 0.001,
                 stretching: 200.0,
+                isotropic: false,
             },
+            metric_eps: 1e-4,
             periods: 16,
             revolutions: 1.0,
             fixed_point_iterations: 5,
@@ -251,21 +262,54 @@ pub fn interface_distances(mesh: &Mesh2, u: &[f64], shape: &SlottedDisk) -> (f64
     (mx, sum / len.max(1e-300), back)
 }
 
-/// Runs the Zalesak rotation. Adapted meshes need an [`Adapter`] (the anisotropic engine);
-/// use [`run_with_adapter`] for that.
+/// Runs the Zalesak rotation: on a fixed uniform mesh, or with anisotropic (or isotropic)
+/// adaptation and the transient fixed point of 004 §3.5 ([`LevelSetAdapter`]).
 pub fn run(opts: &ZalesakOptions) -> Result<ZalesakReport> {
     match opts.mesh {
         ZalesakMesh::Uniform { .. } => run_with_adapter(opts, None),
-        ZalesakMesh::Adapted { .. } => Err(Error::Unsupported(
-            "adapted Zalesak runs need the anisotropic adaptation engine (crate::adapt), not yet \
-             available; use a uniform mesh"
-                .into(),
-        )),
+        ZalesakMesh::Adapted {
+            hmin,
+            stretching,
+            isotropic,
+        } => {
+            let metric = LevelSetMetric {
+                hmin,
+                hmax: hmin * stretching,
+                eps: opts.metric_eps,
+                isotropic,
+                ..LevelSetMetric::default()
+            };
+            let mut a = LevelSetAdapter::new(metric, AdaptOptions::default())?;
+            run_with_adapter(opts, Some(&mut a))
+        }
     }
 }
 
-/// Runs the Zalesak rotation on the initial mesh given by `opts.mesh` (uniform), adapting
-/// every period with `adapter` when one is given (transient fixed point, 004 §3.5).
+/// The initial mesh: a uniform grid, adapted `rounds` times to the exact level set when an
+/// adapter is given (the level set is re-evaluated exactly at the vertices after each round).
+fn initial_mesh(
+    n: usize,
+    shape: &SlottedDisk,
+    adapter: Option<&mut (dyn Adapter + '_)>,
+    rounds: usize,
+) -> Result<Mesh2> {
+    let lo = DVec2::splat(-2.0);
+    let mut mesh = Mesh2::rectangle(lo, -lo, n, n, GridPattern::UnionJack)?;
+    if let Some(a) = adapter {
+        for _ in 0..rounds {
+            let u: Vec<f64> = mesh
+                .points
+                .iter()
+                .map(|&p| shape.signed_distance(p))
+                .collect();
+            mesh = a.adapt(&mesh, &[u])?;
+        }
+    }
+    Ok(mesh)
+}
+
+/// Runs the Zalesak rotation from a uniform mesh, adapting every period with `adapter` when
+/// one is given (transient fixed point, 004 §3.5).
 pub fn run_with_adapter(
     opts: &ZalesakOptions,
     mut adapter: Option<&mut dyn Adapter>,
@@ -280,10 +324,9 @@ pub fn run_with_adapter(
     let shape = SlottedDisk::default();
     let n = match opts.mesh {
         ZalesakMesh::Uniform { n } => n,
-        ZalesakMesh::Adapted { .. } => 100,
+        ZalesakMesh::Adapted { .. } => 40,
     };
-    let lo = DVec2::splat(-2.0);
-    let mut mesh = Mesh2::rectangle(lo, -lo, n, n, GridPattern::UnionJack)?;
+    let mut mesh = initial_mesh(n, &shape, adapter.as_deref_mut(), 4)?;
     let mut u: Vec<f64> = mesh
         .points
         .iter()

@@ -1,3 +1,19 @@
 //! The finite element layer: quadrature, elements, assembly into CSR, solvers.
+//!
+//! - [`quadrature`]: triangle and tetrahedron rules (degrees 1, 2, 5, 7 and more).
+//! - [`csr`]: the square sparse matrix [`Csr`] built from element-to-dof maps.
+//! - [`assembly`]: deterministic parallel element assembly.
+//! - [`p1`]: P1 mass, lumped mass, stiffness (scalar or tensor coefficient), load, errors.
+//! - [`dirichlet`]: symmetric Dirichlet elimination.
+//! - [`solve`]: PCG (Jacobi, IC(0)) and sparse direct solves (faer Cholesky and LU).
 
+pub mod assembly;
+pub mod csr;
+pub mod dirichlet;
 pub mod lagrange;
+pub mod p1;
+pub mod quadrature;
+pub mod solve;
+
+pub use csr::Csr;
+pub use solve::{CgOptions, CgReport, PrecondKind};

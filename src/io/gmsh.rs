@@ -5,7 +5,7 @@
 //! sections are skipped. The first physical tag of a surface becomes `tri_ref`, of a curve the
 //! `edge_ref` of its lines, of a point the `vert_ref` of its node (which is also flagged corner
 //! and required); an entity without a physical group gives label 0. Nodes are numbered in
-//! increasing tag order; `z` must be 0.
+//! increasing tag order and triangles in increasing element-tag order; `z` must be 0.
 //!
 //! Writing: one point entity per corner, one curve entity per edge label (every boundary edge and
 //! every labelled interior edge), one surface entity per `tri_ref`; non-zero labels become
@@ -81,6 +81,7 @@ pub fn parse_msh(path: &Path, text: &str) -> Result<GmshMesh> {
     let mut node_lines: Vec<usize> = Vec::new();
     let mut raw = RawMesh2::default();
     let mut tri_nodes: Vec<[u64; 3]> = Vec::new();
+    let mut tri_tags: Vec<u64> = Vec::new();
     let mut edge_nodes: Vec<([u64; 2], i32, usize)> = Vec::new();
     let mut point_nodes: Vec<(u64, i32, usize)> = Vec::new();
     let (mut has_nodes, mut has_elements) = (false, false);
@@ -213,7 +214,7 @@ pub fn parse_msh(path: &Path, text: &str) -> Result<GmshMesh> {
                     };
                     for k in 0..n {
                         let w = format!("{what}, element {} of {n}", k + 1);
-                        let _: u64 = tk.int(&w)?;
+                        let el_tag: u64 = tk.int(&w)?;
                         let mut v = [0u64; 3];
                         for x in v.iter_mut().take(nn) {
                             *x = tk.int(&w)?;
@@ -222,6 +223,7 @@ pub fn parse_msh(path: &Path, text: &str) -> Result<GmshMesh> {
                         match etype {
                             2 => {
                                 tri_nodes.push(v);
+                                tri_tags.push(el_tag);
                                 raw.tri_ref.push(label);
                                 raw.tri_line.push(l);
                             }
@@ -277,8 +279,13 @@ pub fn parse_msh(path: &Path, text: &str) -> Result<GmshMesh> {
             )
         })
     };
-    for (k, t) in tri_nodes.iter().enumerate() {
-        let l = raw.tri_line[k];
+    // Triangles in increasing element-tag order.
+    let mut torder: Vec<usize> = (0..tri_nodes.len()).collect();
+    torder.sort_by_key(|&k| tri_tags[k]);
+    raw.tri_ref = torder.iter().map(|&k| raw.tri_ref[k]).collect();
+    raw.tri_line = torder.iter().map(|&k| raw.tri_line[k]).collect();
+    for (k, &o) in torder.iter().enumerate() {
+        let (t, l) = (tri_nodes[o], raw.tri_line[k]);
         raw.tris
             .push([lookup(t[0], l)?, lookup(t[1], l)?, lookup(t[2], l)?]);
     }
@@ -500,11 +507,17 @@ pub fn write_msh_named(path: &Path, mesh: &Mesh2, names: &[PhysicalName]) -> Res
         for &(c, e) in &lines {
             lines_of[c].push(e);
         }
+        // Triangle element tags follow the triangle order (so that reading keeps it).
+        let base = corners.len() + lines.len();
         let mut tris_of: Vec<Vec<usize>> = vec![vec![]; surfs.len()];
         for t in mesh.live_tris() {
             tris_of[surf_of[&mesh.tri_ref[t]]].push(t);
         }
         let n_el = corners.len() + lines.len() + mesh.n_live_tris();
+        let mut rank = vec![0usize; mesh.n_tris()];
+        for (k, t) in mesh.live_tris().enumerate() {
+            rank[t] = k;
+        }
         let nblocks = corners.len()
             + lines_of.iter().filter(|l| !l.is_empty()).count()
             + tris_of.iter().filter(|l| !l.is_empty()).count();
@@ -530,9 +543,8 @@ pub fn write_msh_named(path: &Path, mesh: &Mesh2, names: &[PhysicalName]) -> Res
             }
             writeln!(w, "2 {} 2 {}", surfs[s].tag, ts.len())?;
             for &t in ts {
-                tag += 1;
                 let [a, b, c] = mesh.tris[t];
-                writeln!(w, "{tag} {} {} {}", a + 1, b + 1, c + 1)?;
+                writeln!(w, "{} {} {} {}", base + rank[t] + 1, a + 1, b + 1, c + 1)?;
             }
         }
         writeln!(w, "$EndElements")

@@ -105,10 +105,7 @@ impl<'a> Tokens<'a> {
     pub fn expect(&mut self, what: &str) -> Result<&'a str> {
         match self.next_token() {
             Some((t, _)) => Ok(t),
-            None => Err(self.err_at(
-                self.line,
-                format!("unexpected end of file while reading {what}"),
-            )),
+            None => Err(self.err(format!("unexpected end of file while reading {what}"))),
         }
     }
 

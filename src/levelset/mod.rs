@@ -1,3 +1,19 @@
 //! Level-set functions: implicit shapes, zero-level extraction and measures, redistancing.
+//!
+//! Sign convention (004 §2.1): a level-set function is negative inside and positive outside.
 
+mod arcpoly;
+pub mod expr;
+pub mod interface;
 pub mod redistance;
+pub mod shapes;
+
+pub use expr::Expr;
+pub use interface::{
+    enclosed_area, extract_zero_level, interface_distance, interface_length, InterfaceError,
+    Polyline,
+};
+pub use shapes::{
+    nodal_distance, shape_by_name, Circle, Difference, Flower, Intersection, Shape, Union, Zalesak,
+    SHAPE_NAMES,
+};

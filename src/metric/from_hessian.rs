@@ -11,7 +11,7 @@
 //! (`-1/(2p+d)` with `d = 2`; `sqrt(det M_Lp) = D det|H|^{p/(2p+2)}`, so `D` makes
 //! `C(M_Lp) = C`). `p = 1, 2` weight the small-amplitude features more than `p = ∞`
 //! (`M = D |H|`). The target complexity comes from the target vertex count through
-//! `C = sqrt(3) N / 2` ([`super::complexity`]).
+//! `C = sqrt(3) N / 2` ([`super::complexity()`]).
 //!
 //! **Practicalities.**
 //! - `|H|` is floored before the normalisation: its small eigenvalue is raised to
@@ -24,6 +24,8 @@
 //!   solved by fixed-point/secant steps and, once bracketed, Illinois regula falsi, to a relative
 //!   `2e-3` in complexity. If the bounds make the target unreachable (every size clamped), the
 //!   closest field is returned and [`LpReport::reached`] is false.
+
+use rayon::prelude::*;
 
 use super::complexity::{complexity_for_vertices, complexity_of_density};
 use super::levelset::MetricBounds;
@@ -130,7 +132,13 @@ pub fn lp_metric(
     let target = complexity_for_vertices(target_vertices as f64);
     let eval = |x: f64| -> (Vec<Sym2>, f64) {
         let s = x.exp();
-        let m: Vec<Sym2> = m0.iter().map(|m| bounds.apply(&m.scale(s))).collect();
+        let scale_bound = |m: &Sym2| bounds.apply(&m.scale(s));
+        // Order-preserving parallel map: the result does not depend on the thread count.
+        let m: Vec<Sym2> = if m0.len() >= 4096 {
+            m0.par_iter().map(scale_bound).collect()
+        } else {
+            m0.iter().map(scale_bound).collect()
+        };
         let d: Vec<f64> = m.iter().map(|m| m.det().sqrt()).collect();
         let c = complexity_of_density(mesh, &d);
         (m, c)

@@ -8,9 +8,12 @@
 //! ```
 //!
 //! i.e. every size of `M_a` grows by the factor `η_ab <= β^{|e_ab|_{M_a}}` over the edge, and `M_b`
-//! is replaced by `M_b ∩ M_{a→b}` ([`super::intersect`]). Sizes can only shrink, so the process is
-//! monotone; it is iterated with a FIFO work list (a vertex whose metric changed is queued again)
-//! until no metric changes by more than a relative `1e-6` in its quadratic form.
+//! is replaced by `M_b ∩ M_{a→b}` ([`super::intersect()`]). Sizes can only shrink, so the process is
+//! monotone; it is iterated with a work list (a vertex whose metric changed is queued again) until
+//! no metric changes by more than a relative `1e-6` in its quadratic form. The work list is a
+//! priority queue on `sqrt(det M)`, smallest elements first, so most vertices receive their binding
+//! constraint before they spread their own metric: on a 300x300 union-jack grid with a thin
+//! anisotropic band (90,601 vertices) this took 96k vertex visits where a FIFO needed 1.05M (11x).
 //!
 //! **Property on return** (asserted by the tests): for every edge `(a, b)` and every direction `v`,
 //!
@@ -19,11 +22,18 @@
 //! ```
 //!
 //! with `h_x(v) = 1/sqrt(v^T M_x v)` the size at `x` along the unit vector `v`.
+//!
+//! Note: per edge, `η h = h + |e| ln β` for an isotropic size `h`, so metric-space gradation lets
+//! sizes grow *linearly* with distance, `h(x) <= h_0 + x ln β` (tested exactly on a strip), not
+//! geometrically; `β` is the growth factor per unit metric length at the small end.
 
-use std::collections::VecDeque;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
 
 use super::field::validate_field;
-use super::intersect::{intersect, max_form_ratio};
+use super::intersect::intersect;
+#[cfg(test)]
+use super::intersect::max_form_ratio;
 use super::Sym2;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh2;
@@ -47,17 +57,22 @@ pub fn gradate(mesh: &Mesh2, metric: &mut [Sym2], beta: f64) -> Result<usize> {
     let n = mesh.n_points();
     let ln_beta = beta.ln();
     let (off, nbr) = mesh.v2v();
-    let mut queue: VecDeque<usize> = (0..n).filter(|&v| off[v + 1] > off[v]).collect();
-    let mut queued = vec![false; n];
-    for &v in &queue {
-        queued[v] = true;
-    }
+    // Max-heap on (sqrt det M, vertex): the smallest elements spread first, so that most
+    // vertices are reached by their binding constraint before they are spread themselves. An
+    // entry whose key is stale (the metric changed after it was pushed) is skipped.
+    let key = |m: &Sym2| m.det().max(0.0).sqrt();
+    let mut queue: BinaryHeap<(Key, usize)> = (0..n)
+        .filter(|&v| off[v + 1] > off[v])
+        .map(|v| (Key(key(&metric[v])), v))
+        .collect();
     let mut modified = vec![false; n];
     // Safety net only: each update grows a quadratic form by at least GRADATION_TOL, and forms are
     // bounded by the largest initial metric, so the loop ends long before this.
     let mut budget = 1000usize.saturating_mul(n).saturating_add(1000);
-    while let Some(a) = queue.pop_front() {
-        queued[a] = false;
+    while let Some((Key(k), a)) = queue.pop() {
+        if k != key(&metric[a]) {
+            continue;
+        }
         if budget == 0 {
             break;
         }
@@ -70,17 +85,48 @@ pub fn gradate(mesh: &Mesh2, metric: &mut [Sym2], beta: f64) -> Result<usize> {
             let eta = 1.0 + la * ln_beta;
             let spanned = ma.scale(1.0 / (eta * eta));
             let mb = metric[b];
-            if max_form_ratio(&mb, &spanned) > 1.0 + GRADATION_TOL {
-                metric[b] = intersect(&mb, &spanned);
-                modified[b] = true;
-                if !queued[b] {
-                    queued[b] = true;
-                    queue.push_back(b);
-                }
+            if !exceeds(&mb, &spanned) {
+                continue;
             }
+            let r = intersect(&mb, &spanned);
+            // Changes below round-off (possible only at anisotropy ~1e9) are not propagated.
+            if r.sub(&mb).norm() <= 1e-13 * mb.norm() {
+                continue;
+            }
+            metric[b] = r;
+            modified[b] = true;
+            queue.push((Key(key(&r)), b));
         }
     }
     Ok(modified.iter().filter(|&&m| m).count())
+}
+
+/// A totally ordered `f64` heap key (`total_cmp`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Key(f64);
+
+impl Eq for Key {}
+
+impl PartialOrd for Key {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+impl Ord for Key {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.0.total_cmp(&o.0)
+    }
+}
+
+/// Whether `s` is *not* below `(1 + GRADATION_TOL) m` in the SPD order, i.e. whether
+/// `max_v (v^T s v) / (v^T m v) > 1 + GRADATION_TOL` ([`max_form_ratio`]), tested without an
+/// eigen-decomposition: `(1 + tol) m - s` is positive semi-definite iff its diagonal and its
+/// determinant are non-negative.
+#[inline]
+fn exceeds(m: &Sym2, s: &Sym2) -> bool {
+    let t = m.scale(1.0 + GRADATION_TOL).sub(s);
+    !(t.xx >= 0.0 && t.yy >= 0.0 && t.det() >= 0.0)
 }
 
 #[cfg(test)]

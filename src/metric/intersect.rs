@@ -1,5 +1,5 @@
 //! Metric intersection by simultaneous reduction of two quadratic forms (004 §3.5, after Frey &
-//! George, ref. [20] of 004).
+//! George, reference 20 of 004).
 //!
 //! Given SPD `A` and `B`, the matrix `N = A^{-1} B` is diagonalisable with real positive
 //! eigenvalues `μ_i` and eigenvectors `p_i` that are `A`- and `B`-orthogonal. In the basis
@@ -93,6 +93,40 @@ mod tests {
         let a = Sym2::new(4.0, 0.0, 1.0);
         let b = Sym2::new(1.0, 0.0, 9.0);
         assert!(rel_diff(&intersect(&a, &b), &Sym2::new(4.0, 0.0, 9.0)) < 1e-15);
+    }
+
+    /// The textbook construction: eigenvectors `p_i` of the non-symmetric `N = A^{-1} B`, then
+    /// `P^{-T} diag(max(p_i^T A p_i, p_i^T B p_i)) P^{-1}`. Same result as the symmetric route.
+    #[test]
+    fn agrees_with_the_eigenvectors_of_a_inverse_b() {
+        let a = Sym2::from_sizes([0.3, 0.02], DVec2::new(1.0, 0.4));
+        let b = Sym2::from_sizes([0.05, 0.5], DVec2::new(-0.2, 1.0));
+        let ai = a.inverse();
+        // N = A^{-1} B (general 2x2).
+        let n = [
+            [ai.xx * b.xx + ai.xy * b.xy, ai.xx * b.xy + ai.xy * b.yy],
+            [ai.xy * b.xx + ai.yy * b.xy, ai.xy * b.xy + ai.yy * b.yy],
+        ];
+        let tr = n[0][0] + n[1][1];
+        let det = n[0][0] * n[1][1] - n[0][1] * n[1][0];
+        let disc = (0.25 * tr * tr - det).sqrt();
+        let p: Vec<DVec2> = [0.5 * tr - disc, 0.5 * tr + disc]
+            .iter()
+            .map(|&mu| DVec2::new(n[0][1], mu - n[0][0]).normalize())
+            .collect();
+        let d = [0, 1].map(|i| a.quad(p[i]).max(b.quad(p[i])));
+        // R = P^{-T} diag(d) P^{-1}: with Q = P^{-1} (rows q_i), R = Σ d_i q_i q_i^T.
+        let pdet = p[0].x * p[1].y - p[1].x * p[0].y;
+        let q0 = DVec2::new(p[1].y, -p[1].x) / pdet;
+        let q1 = DVec2::new(-p[0].y, p[0].x) / pdet;
+        let r = Sym2::outer(q0)
+            .scale(d[0])
+            .add(&Sym2::outer(q1).scale(d[1]));
+        assert!(
+            rel_diff(&intersect(&a, &b), &r) < 1e-12,
+            "{:?} vs {r:?}",
+            intersect(&a, &b)
+        );
     }
 
     #[test]

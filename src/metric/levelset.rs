@@ -19,7 +19,8 @@ use crate::error::{Error, Result};
 use crate::geom::DVec2;
 
 /// `∇u ∇u^T / hmin² + |D²u| / ε`, 004 eq. (6), unbounded (positive semi-definite; apply
-/// [`MetricBounds::apply`] before use).
+/// [`MetricBounds::apply`] before use). Needs `hmin > 0` and `ε > 0`; otherwise the entries are
+/// infinite or NaN.
 pub fn geometric_metric(grad: DVec2, hess: &Sym2, hmin: f64, eps: f64) -> Sym2 {
     Sym2::outer(grad)
         .scale(1.0 / (hmin * hmin))

@@ -262,7 +262,7 @@ impl Sym3 {
         })
     }
 
-    /// Intersection by simultaneous reduction (004 §3.5), as [`super::intersect`]: with the
+    /// Intersection by simultaneous reduction (004 §3.5), as [`super::intersect()`]: with the
     /// better-conditioned tensor `A = V Λ V^T` as base, `C = Λ^{-1/2} V^T B V Λ^{-1/2} = Q diag(μ)
     /// Q^T` and `A ∩ B = V Λ^{1/2} Q diag(max(1, μ)) Q^T Λ^{1/2} V^T`.
     pub fn intersect(&self, other: &Sym3) -> Sym3 {

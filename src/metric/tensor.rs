@@ -95,7 +95,8 @@ impl Sym2 {
     }
 
     /// Closed-form eigen-decomposition: eigenvalues ascending `[l_min, l_max]` and the matching
-    /// orthonormal eigenvectors. The small eigenvalue is computed as `det / l_max` when both have
+    /// orthonormal eigenvectors (their signs are arbitrary; a diagonal tensor gives the exact axes).
+    /// The small eigenvalue is computed as `det / l_max` when both have
     /// the same sign, which keeps it accurate at anisotropy ratios of 1e12.
     pub fn eigen(&self) -> ([f64; 2], [DVec2; 2]) {
         let mean = 0.5 * (self.xx + self.yy);
@@ -109,7 +110,7 @@ impl Sym2 {
             return if self.xx <= self.yy {
                 ([self.xx, self.yy], [DVec2::X, DVec2::Y])
             } else {
-                ([self.yy, self.xx], [DVec2::Y, DVec2::NEG_X])
+                ([self.yy, self.xx], [DVec2::Y, DVec2::X])
             };
         }
         // Angle of the eigenvector of the largest eigenvalue.
@@ -160,7 +161,8 @@ impl Sym2 {
     }
 
     /// The prescribed sizes `h_i = 1 / sqrt(λ_i)` in ascending-eigenvalue order (so the
-    /// *largest* size first) and their unit directions (004 §3.3).
+    /// *largest* size first) and their unit directions (004 §3.3). SPD input (a non-positive
+    /// eigenvalue gives an infinite or NaN size).
     pub fn sizes(&self) -> ([f64; 2], [DVec2; 2]) {
         let (l, v) = self.eigen();
         ([1.0 / l[0].sqrt(), 1.0 / l[1].sqrt()], v)

@@ -9,7 +9,7 @@
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{Matrix2, Matrix3};
 
 use super::simplices::{norm, sub};
 
@@ -27,38 +27,65 @@ impl Ord for Key {
     }
 }
 
-/// The eikonal update of `x0` from the known vertices `known = [(x_i, u_i)]` of one simplex.
+/// The face solution from the known vertices `sel` (2 or 3 of them): the `u_0` with
+/// `(u - u_0 1)^T Q^{-1} (u - u_0 1) = 1`, `Q = E^T E`, `E = [x_i - x_0]`, if its characteristic
+/// passes through the face (`μ = Q^{-1}(u - u_0 1) <= 0`).
+fn face_solution(x0: &[f64; 3], sel: &[([f64; 3], f64)]) -> Option<f64> {
+    let k = sel.len();
+    let mut e = [[0.0; 3]; 3];
+    let mut u = [0.0; 3];
+    for (i, (x, v)) in sel.iter().enumerate() {
+        e[i] = sub(x, x0);
+        u[i] = *v;
+    }
+    let q = |i: usize, j: usize| e[i][0] * e[j][0] + e[i][1] * e[j][1] + e[i][2] * e[j][2];
+    // Q^{-1} applied through an explicit inverse (k = 2 or 3).
+    let inv: [[f64; 3]; 3] = if k == 2 {
+        let m = Matrix2::new(q(0, 0), q(0, 1), q(1, 0), q(1, 1)).try_inverse()?;
+        [
+            [m[(0, 0)], m[(0, 1)], 0.0],
+            [m[(1, 0)], m[(1, 1)], 0.0],
+            [0.0; 3],
+        ]
+    } else {
+        let m = Matrix3::from_fn(q).try_inverse()?;
+        std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+    };
+    let apply = |v: &[f64; 3]| -> [f64; 3] {
+        std::array::from_fn(|i| (0..k).map(|j| inv[i][j] * v[j]).sum())
+    };
+    let one = [1.0, 1.0, if k == 3 { 1.0 } else { 0.0 }];
+    let qo = apply(&one);
+    let qu = apply(&u);
+    let a: f64 = (0..k).map(|i| qo[i]).sum();
+    let b: f64 = (0..k).map(|i| qu[i]).sum();
+    let c: f64 = (0..k).map(|i| u[i] * qu[i]).sum::<f64>() - 1.0;
+    let disc = b * b - a * c;
+    if a.is_nan() || a <= 0.0 || disc < 0.0 {
+        return None;
+    }
+    let u0 = (b + disc.sqrt()) / a;
+    let tol = 1e-12 * u0.abs().max(1.0);
+    (0..k).all(|i| qu[i] - u0 * qo[i] <= tol).then_some(u0)
+}
+
+/// The eikonal update of `x0` from the known vertices `known = [(x_i, u_i)]` of one simplex:
+/// the minimum over every non-empty subset (vertex, edge or face) of its admissible solution.
 pub(crate) fn local_update(x0: &[f64; 3], known: &[([f64; 3], f64)]) -> f64 {
     let m = known.len();
     let mut best = f64::INFINITY;
+    let mut sel = [([0.0; 3], 0.0); 3];
     for mask in 1u32..(1 << m) {
-        let sel: Vec<&([f64; 3], f64)> = (0..m)
-            .filter(|i| mask & (1 << i) != 0)
-            .map(|i| &known[i])
-            .collect();
-        if sel.len() == 1 {
+        let mut k = 0;
+        for (i, kn) in known.iter().enumerate() {
+            if mask & (1 << i) != 0 {
+                sel[k] = *kn;
+                k += 1;
+            }
+        }
+        if k == 1 {
             best = best.min(sel[0].1 + norm(&sub(&sel[0].0, x0)));
-            continue;
-        }
-        let k = sel.len();
-        let e: Vec<[f64; 3]> = sel.iter().map(|(x, _)| sub(x, x0)).collect();
-        let q = DMatrix::from_fn(k, k, |i, j| (0..3).map(|d| e[i][d] * e[j][d]).sum::<f64>());
-        let Some(qi) = q.try_inverse() else {
-            continue;
-        };
-        let u = DVector::from_iterator(k, sel.iter().map(|(_, v)| *v));
-        let one = DVector::from_element(k, 1.0);
-        let a = one.dot(&(&qi * &one));
-        let b = one.dot(&(&qi * &u));
-        let c = u.dot(&(&qi * &u)) - 1.0;
-        let disc = b * b - a * c;
-        if a.is_nan() || a <= 0.0 || disc < 0.0 {
-            continue;
-        }
-        let u0 = (b + disc.sqrt()) / a;
-        // Upwind condition: -∇u = E(-μ) must lie in the cone of the face, i.e. μ <= 0.
-        let mu = &qi * (u - one * u0);
-        if mu.iter().all(|&t| t <= 1e-12 * u0.abs().max(1.0)) {
+        } else if let Some(u0) = face_solution(x0, &sel[..k]) {
             best = best.min(u0);
         }
     }
@@ -103,13 +130,16 @@ pub(crate) fn fast_marching(
         let mut best = f64::INFINITY;
         for &c in &v2c[off[b]..off[b + 1]] {
             let cell = &cells[c as usize * nv..(c as usize + 1) * nv];
-            let kn: Vec<([f64; 3], f64)> = cell
-                .iter()
-                .filter(|&&w| w as usize != b && done[w as usize])
-                .map(|&w| (points[w as usize], val[w as usize]))
-                .collect();
-            if !kn.is_empty() {
-                best = best.min(local_update(&points[b], &kn));
+            let mut kn = [([0.0; 3], 0.0); 3];
+            let mut k = 0;
+            for &w in cell {
+                if w as usize != b && done[w as usize] && k < 3 {
+                    kn[k] = (points[w as usize], val[w as usize]);
+                    k += 1;
+                }
+            }
+            if k > 0 {
+                best = best.min(local_update(&points[b], &kn[..k]));
             }
         }
         best

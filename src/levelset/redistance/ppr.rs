@@ -127,6 +127,16 @@ impl<'a> Recovery<'a> {
         }
     }
 
+    /// A recovery whose nodal gradients are already known (P1: one per vertex), e.g. from
+    /// [`crate::recovery::gradient_ppr`].
+    pub(crate) fn with_node_grads(sx: &'a Simplices, f: &'a [f64], grads: &[[f64; 3]]) -> Self {
+        let r = Self::new(sx, f);
+        for (cell, g) in r.grads.iter().zip(grads) {
+            let _ = cell.set(*g);
+        }
+        r
+    }
+
     /// The nodes of the cells around the vertices of `verts` (deduplicated, sorted).
     fn patch_nodes(&self, verts: &[u32]) -> Vec<u32> {
         let mut nodes: Vec<u32> = verts

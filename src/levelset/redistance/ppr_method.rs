@@ -110,7 +110,15 @@ pub fn redistance_ppr(mesh: &Mesh2, phi: &[f64], opts: &PprOptions) -> Result<Pp
     let pts = mesh.points.iter().map(|p| [p.x, p.y, 0.0]).collect();
     let cells = mesh.live_tris().flat_map(|t| mesh.tris[t]).collect();
     let sx = Simplices::new(2, pts, cells, opts.degree)?;
-    run(&sx, phi, opts)
+    if opts.degree == 1 {
+        // P1 on triangles: the recovery module's PPR (same fit, 003 §6.2).
+        let g: Vec<[f64; 3]> = crate::recovery::gradient_ppr(mesh, phi)?
+            .iter()
+            .map(|g| [g.x, g.y, 0.0])
+            .collect();
+        return run(&sx, phi, opts, Recovery::with_node_grads(&sx, phi, &g));
+    }
+    run(&sx, phi, opts, Recovery::new(&sx, phi))
 }
 
 /// PPR redistancing of a P1 or P2 field on a tetrahedral mesh (003 §6), `phi` indexed by vertex
@@ -130,7 +138,7 @@ pub fn redistance_ppr_3d(
     let pts = points.iter().map(|p| p.to_array()).collect();
     let cells = tets.iter().flatten().copied().collect();
     let sx = Simplices::new(3, pts, cells, opts.degree)?;
-    run(&sx, phi, opts)
+    run(&sx, phi, opts, Recovery::new(&sx, phi))
 }
 
 /// Whether a cell with these nodal values is cut by the zero level.
@@ -144,7 +152,7 @@ fn is_cut(vals: impl Iterator<Item = f64>) -> bool {
     (neg && pos) || zero
 }
 
-fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions) -> Result<PprOutput> {
+fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions, rec: Recovery) -> Result<PprOutput> {
     let nn = sx.n_nodes();
     let cut: Vec<u32> = (0..sx.n_cells() as u32)
         .filter(|&c| is_cut(sx.nodes(c as usize).iter().map(|&n| phi[n as usize])))
@@ -170,7 +178,6 @@ fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions) -> Result<PprOutput> {
     let band_nodes: Vec<u32> = (0..nn as u32)
         .filter(|&n| home[n as usize] != u32::MAX)
         .collect();
-    let rec = Recovery::new(sx, phi);
     let params = ObliqueParams {
         tol: opts.tol,
         max_outer: opts.max_outer,

@@ -1,0 +1,526 @@
+//! Implicit shapes given by signed distance functions (negative inside, positive outside; 004
+//! §2.1: the level set is `u = ±d`).
+//!
+//! [`Circle`] and [`Zalesak`] have exact signed distances with analytic gradients and Hessians;
+//! [`Flower`] has a first-order normalised distance; [`Union`], [`Intersection`] and
+//! [`Difference`] combine two shapes by min/max; any [`Expr`] is a shape whose "distance" is just
+//! its value. [`shape_by_name`] builds the shapes the benchmarks use.
+
+use super::arcpoly::{ArcPolygon, Piece};
+use super::expr::Expr;
+use crate::error::{Error, Result};
+use crate::geom::DVec2;
+use crate::metric::Sym2;
+use std::f64::consts::{PI, TAU};
+
+/// A shape given by a signed distance function (negative inside).
+pub trait Shape: Send + Sync {
+    /// Signed distance (or, where documented, an approximation of it) from `p` to the boundary.
+    fn distance(&self, p: DVec2) -> f64;
+
+    /// Gradient of [`Shape::distance`]. The default uses central differences with step
+    /// `1e-6 max(1, |p|)`.
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        let h = 1e-6 * p.abs().max_element().max(1.0);
+        let dx = self.distance(p + DVec2::new(h, 0.0)) - self.distance(p - DVec2::new(h, 0.0));
+        let dy = self.distance(p + DVec2::new(0.0, h)) - self.distance(p - DVec2::new(0.0, h));
+        DVec2::new(dx, dy) / (2.0 * h)
+    }
+
+    /// Hessian of [`Shape::distance`]. The default uses second differences with step
+    /// `1e-4 max(1, |p|)` (truncation error O(h²), round-off O(eps/h²) ≈ 1e-8).
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        let h = 1e-4 * p.abs().max_element().max(1.0);
+        let f = |dx: f64, dy: f64| self.distance(p + DVec2::new(dx, dy));
+        let f0 = f(0.0, 0.0);
+        let xx = (f(h, 0.0) - 2.0 * f0 + f(-h, 0.0)) / (h * h);
+        let yy = (f(0.0, h) - 2.0 * f0 + f(0.0, -h)) / (h * h);
+        let xy = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4.0 * h * h);
+        Sym2::new(xx, xy, yy)
+    }
+
+    /// Exact area of the inside, when known in closed form or by exact geometry.
+    fn exact_area(&self) -> Option<f64> {
+        None
+    }
+
+    /// Exact length of the boundary, when known.
+    fn exact_perimeter(&self) -> Option<f64> {
+        None
+    }
+
+    /// About `n` points on the exact interface (for the exact → discrete Hausdorff direction),
+    /// or `None` when the shape cannot sample its boundary.
+    fn boundary_samples(&self, _n: usize) -> Option<Vec<DVec2>> {
+        None
+    }
+
+    /// A short human-readable name.
+    fn name(&self) -> String;
+}
+
+impl<S: Shape + ?Sized> Shape for Box<S> {
+    fn distance(&self, p: DVec2) -> f64 {
+        (**self).distance(p)
+    }
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        (**self).gradient(p)
+    }
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        (**self).hessian(p)
+    }
+    fn exact_area(&self) -> Option<f64> {
+        (**self).exact_area()
+    }
+    fn exact_perimeter(&self) -> Option<f64> {
+        (**self).exact_perimeter()
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        (**self).boundary_samples(n)
+    }
+    fn name(&self) -> String {
+        (**self).name()
+    }
+}
+
+/// `(I - n n^T) * s`: the Hessian of `s |p - q|` or `s (|p - c| - R)` with unit `n`, divided by
+/// the distance by the caller.
+fn projector(n: DVec2, s: f64) -> Sym2 {
+    Sym2::new(s * (1.0 - n.x * n.x), -s * n.x * n.y, s * (1.0 - n.y * n.y))
+}
+
+/// The disk of centre `centre` and radius `radius`: `d = |p - c| - R` (exact).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Circle {
+    pub centre: DVec2,
+    pub radius: f64,
+}
+
+impl Shape for Circle {
+    fn distance(&self, p: DVec2) -> f64 {
+        (p - self.centre).length() - self.radius
+    }
+    /// `(p - c) / |p - c|`; `(1, 0)` at the centre, where the distance is not differentiable.
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        let d = p - self.centre;
+        let r = d.length();
+        if r > 0.0 {
+            d / r
+        } else {
+            DVec2::X
+        }
+    }
+    /// `(I - n n^T) / |p - c|`; zero at the centre (the cone tip has no finite Hessian).
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        let d = p - self.centre;
+        let r = d.length();
+        if r > 0.0 {
+            projector(d / r, 1.0 / r)
+        } else {
+            Sym2::default()
+        }
+    }
+    fn exact_area(&self) -> Option<f64> {
+        Some(PI * self.radius * self.radius)
+    }
+    fn exact_perimeter(&self) -> Option<f64> {
+        Some(TAU * self.radius)
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        Some(
+            (0..n)
+                .map(|i| {
+                    let (s, c) = (TAU * i as f64 / n as f64).sin_cos();
+                    self.centre + self.radius * DVec2::new(c, s)
+                })
+                .collect(),
+        )
+    }
+    fn name(&self) -> String {
+        format!(
+            "circle(centre = ({}, {}), radius = {})",
+            self.centre.x, self.centre.y, self.radius
+        )
+    }
+}
+
+/// Zalesak's slotted disk (004 §5.1; geometry in `papers/README.md`): the disk of radius `radius`
+/// centred at `centre` minus the slot `|x - centre.x| <= half_width`, `y <= slot_top`, cut from the
+/// bottom of the disk.
+///
+/// The signed distance is exact: the boundary is split into the arc (the circle without the
+/// small bottom arc inside the slot), the two slot walls and the slot top, and the distance is
+/// the minimum over these pieces — which also covers the four corners (the arc/wall corners at
+/// the bottom and the reflex wall/top corners), since a piece's closest point may be its end
+/// point. The sign comes from the exact inside test. Area and perimeter are computed from the
+/// pieces (Green's theorem), not tabulated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Zalesak {
+    pub centre: DVec2,
+    pub radius: f64,
+    pub half_width: f64,
+    pub slot_top: f64,
+    curve: ArcPolygon,
+}
+
+impl Default for Zalesak {
+    /// The benchmark disk: radius 0.5 at (0, 0.75), slot `|x| <= 0.06` up to `y = 0.85`.
+    fn default() -> Self {
+        Zalesak::new(DVec2::new(0.0, 0.75), 0.5, 0.06, 0.85)
+            .expect("the default Zalesak parameters are valid")
+    }
+}
+
+impl Zalesak {
+    /// A slotted disk. Requires `0 < half_width < radius` and a slot top strictly inside the
+    /// disk above the slot's bottom corners.
+    pub fn new(centre: DVec2, radius: f64, half_width: f64, slot_top: f64) -> Result<Zalesak> {
+        let ok = centre.is_finite()
+            && radius.is_finite()
+            && radius > 0.0
+            && half_width > 0.0
+            && half_width < radius;
+        if !ok {
+            return Err(Error::InvalidInput(format!(
+                "Zalesak disk: need 0 < half_width ({half_width}) < radius ({radius}) and a finite centre"
+            )));
+        }
+        let depth = (radius * radius - half_width * half_width).sqrt();
+        let y_bottom = centre.y - depth;
+        let y_top_arc = centre.y + depth;
+        if !(slot_top > y_bottom && slot_top < y_top_arc) {
+            return Err(Error::InvalidInput(format!(
+                "Zalesak disk: slot top {slot_top} must lie in ({y_bottom}, {y_top_arc})"
+            )));
+        }
+        let (w, c) = (half_width, centre);
+        // Angle of the bottom-right corner (c.x + w, y_bottom) seen from the centre.
+        let start = (-depth).atan2(w);
+        let span = TAU - 2.0 * (w / radius).asin();
+        let br = DVec2::new(c.x + w, y_bottom);
+        let bl = DVec2::new(c.x - w, y_bottom);
+        let tl = DVec2::new(c.x - w, slot_top);
+        let tr = DVec2::new(c.x + w, slot_top);
+        let curve = ArcPolygon {
+            pieces: vec![
+                Piece::Arc {
+                    centre: c,
+                    radius,
+                    start,
+                    span,
+                },
+                Piece::Segment { a: bl, b: tl },
+                Piece::Segment { a: tl, b: tr },
+                Piece::Segment { a: tr, b: br },
+            ],
+        };
+        Ok(Zalesak {
+            centre,
+            radius,
+            half_width,
+            slot_top,
+            curve,
+        })
+    }
+
+    /// Exact inside test (strict: boundary points are not inside).
+    pub fn contains(&self, p: DVec2) -> bool {
+        let in_disk = (p - self.centre).length() < self.radius;
+        let in_slot = (p.x - self.centre.x).abs() < self.half_width && p.y < self.slot_top;
+        in_disk && !in_slot
+    }
+
+    fn sign(&self, p: DVec2) -> f64 {
+        if self.contains(p) {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+}
+
+impl Shape for Zalesak {
+    fn distance(&self, p: DVec2) -> f64 {
+        self.sign(p) * self.curve.closest(p).dist
+    }
+    /// `s (p - q) / |p - q|` for the closest boundary point `q`; on the boundary, the outward
+    /// normal of the closest piece.
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        let c = self.curve.closest(p);
+        if c.dist > 0.0 {
+            self.sign(p) * (p - c.point) / c.dist
+        } else {
+            c.normal
+        }
+    }
+    /// Zero where the closest point is inside a straight piece; `±(I - n n^T)/|p - c|` where it is
+    /// inside the arc; `s (I - g g^T)/|p - q|` where it is a corner `q`. Zero on corners.
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        let c = self.curve.closest(p);
+        if let Some(centre) = c.arc_centre {
+            let d = p - centre;
+            let rho = d.length();
+            if rho == 0.0 {
+                return Sym2::default();
+            }
+            let factor = if c.dist == 0.0 {
+                1.0
+            } else {
+                self.sign(p) * (rho - self.radius).signum()
+            };
+            projector(d / rho, factor / rho)
+        } else if c.at_end && c.dist > 0.0 {
+            let g = (p - c.point) / c.dist;
+            projector(g, self.sign(p) / c.dist)
+        } else {
+            Sym2::default()
+        }
+    }
+    fn exact_area(&self) -> Option<f64> {
+        Some(self.curve.area())
+    }
+    fn exact_perimeter(&self) -> Option<f64> {
+        Some(self.curve.perimeter())
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        Some(self.curve.samples(n))
+    }
+    fn name(&self) -> String {
+        "zalesak".into()
+    }
+}
+
+/// The "flower" `r(θ) = r0 + a cos(k θ)` around `centre` (polar coordinates about the centre).
+///
+/// The distance is approximate: `f / |∇f|` with `f = ρ - r(θ)`, i.e.
+/// `(ρ - r(θ)) / sqrt(1 + (r'(θ)/ρ)²)` — the first-order normalisation, exact on the curve to
+/// first order (zero level exact, unit gradient on the curve) but not a true distance away from
+/// it. Area is exact (`π r0² + π a²/2` for `k >= 1`); the perimeter is integrated by the periodic
+/// trapezoidal rule (spectrally accurate).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Flower {
+    pub centre: DVec2,
+    pub r0: f64,
+    pub a: f64,
+    pub k: u32,
+}
+
+impl Flower {
+    /// A flower; requires `r0 > |a|` (so that `r(θ) > 0`) and `k >= 1`.
+    pub fn new(centre: DVec2, r0: f64, a: f64, k: u32) -> Result<Flower> {
+        if !(centre.is_finite() && r0.is_finite() && a.is_finite() && r0 > a.abs() && k >= 1) {
+            return Err(Error::InvalidInput(format!(
+                "flower: need r0 > |a| and k >= 1 (got r0 = {r0}, a = {a}, k = {k})"
+            )));
+        }
+        Ok(Flower { centre, r0, a, k })
+    }
+
+    fn r(&self, theta: f64) -> f64 {
+        self.r0 + self.a * (self.k as f64 * theta).cos()
+    }
+
+    fn dr(&self, theta: f64) -> f64 {
+        -self.a * self.k as f64 * (self.k as f64 * theta).sin()
+    }
+}
+
+impl Shape for Flower {
+    fn distance(&self, p: DVec2) -> f64 {
+        let d = p - self.centre;
+        let rho = d.length();
+        if rho == 0.0 {
+            return -(self.r0 - self.a.abs());
+        }
+        let theta = d.y.atan2(d.x);
+        let q = self.dr(theta) / rho;
+        (rho - self.r(theta)) / (1.0 + q * q).sqrt()
+    }
+    fn exact_area(&self) -> Option<f64> {
+        Some(PI * self.r0 * self.r0 + 0.5 * PI * self.a * self.a)
+    }
+    fn exact_perimeter(&self) -> Option<f64> {
+        let m = 4096 * self.k as usize;
+        let h = TAU / m as f64;
+        let sum: f64 = (0..m)
+            .map(|i| {
+                let t = i as f64 * h;
+                self.r(t).hypot(self.dr(t))
+            })
+            .sum();
+        Some(sum * h)
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        Some(
+            (0..n)
+                .map(|i| {
+                    let t = TAU * i as f64 / n as f64;
+                    let (s, c) = t.sin_cos();
+                    self.centre + self.r(t) * DVec2::new(c, s)
+                })
+                .collect(),
+        )
+    }
+    fn name(&self) -> String {
+        format!("flower(r0 = {}, a = {}, k = {})", self.r0, self.a, self.k)
+    }
+}
+
+impl Shape for Expr {
+    /// The expression's value (not a distance unless the expression is one).
+    fn distance(&self, p: DVec2) -> f64 {
+        self.eval(p)
+    }
+    fn name(&self) -> String {
+        self.source().to_string()
+    }
+}
+
+/// Picks the derivative of whichever operand is active in a min/max combination.
+fn pick<S: Shape + ?Sized, T: Shape + ?Sized>(
+    first_active: bool,
+    a: &S,
+    b: &T,
+    negate_b: bool,
+    p: DVec2,
+) -> (DVec2, Sym2) {
+    if first_active {
+        (a.gradient(p), a.hessian(p))
+    } else {
+        let s = if negate_b { -1.0 } else { 1.0 };
+        (s * b.gradient(p), b.hessian(p).scale(s))
+    }
+}
+
+/// Keeps the samples of `from` for which `keep` holds.
+fn filtered(from: &dyn Shape, n: usize, keep: impl Fn(DVec2) -> bool) -> Option<Vec<DVec2>> {
+    Some(
+        from.boundary_samples(n)?
+            .into_iter()
+            .filter(|&p| keep(p))
+            .collect(),
+    )
+}
+
+/// Union `A ∪ B`: `min(d_A, d_B)`. A distance bound: exact outside the union; inside, exact
+/// away from the seams where the two boundaries cross, and an underestimate of `|d|` where the
+/// closest point of one boundary lies inside the other shape.
+pub struct Union {
+    pub a: Box<dyn Shape>,
+    pub b: Box<dyn Shape>,
+}
+
+impl Shape for Union {
+    fn distance(&self, p: DVec2) -> f64 {
+        self.a.distance(p).min(self.b.distance(p))
+    }
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        let first = self.a.distance(p) <= self.b.distance(p);
+        pick(first, &self.a, &self.b, false, p).0
+    }
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        let first = self.a.distance(p) <= self.b.distance(p);
+        pick(first, &self.a, &self.b, false, p).1
+    }
+    /// The samples of each operand that lie outside (or on) the other: exactly the points of the
+    /// union's boundary.
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        let mut s = filtered(&*self.a, n, |p| self.b.distance(p) >= 0.0)?;
+        s.extend(filtered(&*self.b, n, |p| self.a.distance(p) >= 0.0)?);
+        Some(s)
+    }
+    fn name(&self) -> String {
+        format!("union({}, {})", self.a.name(), self.b.name())
+    }
+}
+
+/// Intersection `A ∩ B`: `max(d_A, d_B)`. A distance bound: exact inside; outside, exact away
+/// from the seams where the two boundaries cross and an underestimate near them.
+pub struct Intersection {
+    pub a: Box<dyn Shape>,
+    pub b: Box<dyn Shape>,
+}
+
+impl Shape for Intersection {
+    fn distance(&self, p: DVec2) -> f64 {
+        self.a.distance(p).max(self.b.distance(p))
+    }
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        let first = self.a.distance(p) >= self.b.distance(p);
+        pick(first, &self.a, &self.b, false, p).0
+    }
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        let first = self.a.distance(p) >= self.b.distance(p);
+        pick(first, &self.a, &self.b, false, p).1
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        let mut s = filtered(&*self.a, n, |p| self.b.distance(p) <= 0.0)?;
+        s.extend(filtered(&*self.b, n, |p| self.a.distance(p) <= 0.0)?);
+        Some(s)
+    }
+    fn name(&self) -> String {
+        format!("intersection({}, {})", self.a.name(), self.b.name())
+    }
+}
+
+/// Difference `A \ B = A ∩ Bᶜ`: `max(d_A, -d_B)`. A distance bound: exact inside; outside,
+/// exact away from the seams and an underestimate near them.
+pub struct Difference {
+    pub a: Box<dyn Shape>,
+    pub b: Box<dyn Shape>,
+}
+
+impl Shape for Difference {
+    fn distance(&self, p: DVec2) -> f64 {
+        self.a.distance(p).max(-self.b.distance(p))
+    }
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        let first = self.a.distance(p) >= -self.b.distance(p);
+        pick(first, &self.a, &self.b, true, p).0
+    }
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        let first = self.a.distance(p) >= -self.b.distance(p);
+        pick(first, &self.a, &self.b, true, p).1
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        let mut s = filtered(&*self.a, n, |p| self.b.distance(p) >= 0.0)?;
+        s.extend(filtered(&*self.b, n, |p| self.a.distance(p) <= 0.0)?);
+        Some(s)
+    }
+    fn name(&self) -> String {
+        format!("difference({}, {})", self.a.name(), self.b.name())
+    }
+}
+
+/// The names [`shape_by_name`] accepts.
+pub const SHAPE_NAMES: [&str; 3] = ["circle", "zalesak", "flower"];
+
+/// The benchmark shapes by name:
+/// - `"circle"`: radius 0.5 at the origin (meant for the domain `[-1, 1]²`);
+/// - `"zalesak"`: [`Zalesak::default`] (radius 0.5 at (0, 0.75), slot `|x| <= 0.06` up to
+///   `y = 0.85`; domain `[-2, 2]²`, 004 §5.1);
+/// - `"flower"`: `r = 0.5 + 0.1 cos(5θ)` at the origin (domain `[-1, 1]²`; curvature radius
+///   between about 0.076 in the valleys and 0.12 at the petal tips).
+///
+/// Names are case-insensitive; any other name is an error listing the valid ones.
+pub fn shape_by_name(name: &str) -> Result<Box<dyn Shape>> {
+    match name.trim().to_ascii_lowercase().as_str() {
+        "circle" => Ok(Box::new(Circle {
+            centre: DVec2::ZERO,
+            radius: 0.5,
+        })),
+        "zalesak" => Ok(Box::new(Zalesak::default())),
+        "flower" => Ok(Box::new(Flower::new(DVec2::ZERO, 0.5, 0.1, 5)?)),
+        _ => Err(Error::InvalidInput(format!(
+            "unknown shape '{name}': valid shapes are {}",
+            SHAPE_NAMES.join(", ")
+        ))),
+    }
+}
+
+/// The nodal interpolant `u_h = I_h d` of a shape's distance on the vertices of `mesh` (the P1
+/// level set of 004 §2.1), computed in parallel.
+pub fn nodal_distance(mesh: &crate::mesh::Mesh2, shape: &dyn Shape) -> Vec<f64> {
+    use rayon::prelude::*;
+    mesh.points.par_iter().map(|&p| shape.distance(p)).collect()
+}
