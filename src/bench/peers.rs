@@ -29,37 +29,36 @@
 //! that zero level and the exact boundary, and the wall time of the peer's runs.
 
 use crate::adapt::{adapt, AdaptOptions, AnalyticLevelSetSource, LevelSetMetric};
-use crate::bench::zalesak::{interface_distances, SlottedDisk, EXACT_AREA, EXACT_PERIMETER};
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::io::{self, Sol};
+use crate::levelset::interface::{
+    enclosed_area, extract_zero_level, interface_distance, interface_length,
+};
+use crate::levelset::shapes::{Shape, Zalesak};
 use crate::mesh::{GridPattern, Mesh2};
 use crate::metric::length::quality_stats;
 use crate::metric::Sym2;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 /// The FreeFem++ driver script, with `@IN@`, `@DATA@`, `@OUT@` and `@ADAPT@` placeholders.
 pub const BAMG_SCRIPT: &str = include_str!("../../scripts/peers/bamg_adapt.edp");
 
-/// The exact signed distance to the slotted disk (negative inside) and its gradient and Hessian.
-///
-/// Derivatives by central differences of the exact distance (steps `1e-6` and `1e-4`; the
-/// distance is smooth away from the medial axis, so the Hessian is exact to about `1e-8`).
-/// (Interim until `levelset::shapes::Zalesak` provides them in closed form.)
+/// The benchmark slotted disk (built once).
+pub fn zalesak() -> &'static Zalesak {
+    static SHAPE: OnceLock<Zalesak> = OnceLock::new();
+    SHAPE.get_or_init(Zalesak::default)
+}
+
+/// The exact signed distance to the slotted disk (negative inside) and its gradient and Hessian
+/// in closed form ([`Zalesak`]'s [`Shape`] implementation).
 pub fn zalesak_exact(p: DVec2) -> (f64, DVec2, Sym2) {
-    let s = SlottedDisk::default();
-    let f = |dx: f64, dy: f64| s.signed_distance(p + DVec2::new(dx, dy));
-    let u = f(0.0, 0.0);
-    let g = 1e-6;
-    let grad = DVec2::new(f(g, 0.0) - f(-g, 0.0), f(0.0, g) - f(0.0, -g)) / (2.0 * g);
-    let h = 1e-4;
-    let xx = (f(h, 0.0) - 2.0 * u + f(-h, 0.0)) / (h * h);
-    let yy = (f(0.0, h) - 2.0 * u + f(0.0, -h)) / (h * h);
-    let xy = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4.0 * h * h);
-    (u, grad, Sym2::new(xx, xy, yy))
+    let s = zalesak();
+    (s.distance(p), s.gradient(p), s.hessian(p))
 }
 
 /// The target metric of the comparison: 004 eq. (6) with hmin = 0.001, hmax = 0.2 and the given
@@ -264,13 +263,21 @@ hausdorff,seconds,seconds_last,self_seconds_last";
 }
 
 /// Measures an adapted mesh against the Zalesak problem (see the module documentation): the
-/// target metric `m` and the exact distance are evaluated at the mesh's vertices.
+/// target metric `m` and the exact distance are evaluated at the mesh's vertices; the zero level
+/// of the P1 interpolant is compared with the exact area, perimeter and boundary
+/// ([`crate::levelset::interface`], 4 samples per segment for the Hausdorff distance). A mesh
+/// whose zero level is empty gets infinite interface errors.
 pub fn measure(peer: PeerKind, mesh: &Mesh2, m: &LevelSetMetric) -> PeerResult {
+    let shape = zalesak();
     let (metric, u) = evaluate_target(mesh, m);
     let q = quality_stats(mesh, &metric);
-    let area = crate::advect::enclosed_area(mesh, &u);
-    let perimeter = crate::advect::interface_length(mesh, &u);
-    let (to_exact, _, from_exact) = interface_distances(mesh, &u, &SlottedDisk::default());
+    let exact_area = shape.exact_area().unwrap_or(f64::NAN);
+    let exact_perimeter = shape.exact_perimeter().unwrap_or(f64::NAN);
+    let area = enclosed_area(mesh, &u).unwrap_or(f64::NAN);
+    let perimeter = interface_length(mesh, &u).unwrap_or(f64::NAN);
+    let hausdorff = extract_zero_level(mesh, &u)
+        .map(|pl| interface_distance(&pl, shape, 4).hausdorff)
+        .unwrap_or(f64::INFINITY);
     PeerResult {
         vertices: mesh.n_points(),
         triangles: mesh.n_live_tris(),
@@ -279,10 +286,10 @@ pub fn measure(peer: PeerKind, mesh: &Mesh2, m: &LevelSetMetric) -> PeerResult {
         q_ani_mean: q.q_ani_mean,
         q_ani_max: q.q_ani_max,
         area,
-        area_rel_error: (area - EXACT_AREA) / EXACT_AREA,
+        area_rel_error: (area - exact_area) / exact_area,
         perimeter,
-        perimeter_rel_error: (perimeter - EXACT_PERIMETER) / EXACT_PERIMETER,
-        hausdorff: to_exact.max(from_exact),
+        perimeter_rel_error: (perimeter - exact_perimeter) / exact_perimeter,
+        hausdorff,
         ..PeerResult::empty(peer, m.eps, PeerStatus::Ok)
     }
 }
