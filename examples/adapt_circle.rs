@@ -43,7 +43,7 @@ fn main() -> anisomesh::Result<()> {
         &mut metric,
         &mut fields,
         Some(&src),
-        &AdaptOptions::default(),
+        &AdaptOptions::default().insertion(std::env::var("ADAPT_INSERT").is_ok()),
     )?;
     let q = quality_stats(&mesh, &metric);
     println!(

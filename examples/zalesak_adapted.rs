@@ -2,7 +2,7 @@
 //! point (004 §3.5): one revolution in 16 periods of π/8, metric 004 eq. (6) with hmin = 0.001
 //! and stretching 200, metrics of u^n and u^{n+1} intersected each period.
 //!
-//! Usage: `cargo run --release --example zalesak_adapted -- [eps] [fixed-point iterations] [l2|nodal] [iso]`
+//! Usage: `cargo run --release --example zalesak_adapted -- [eps] [fixed-point iterations] [grade] [l2|nodal] [iso]`
 
 use anisomesh::advect::{AdvectOptions, Form, Interpolation};
 use anisomesh::bench::zalesak::{run, ZalesakMesh, ZalesakOptions};
@@ -13,6 +13,7 @@ fn main() -> anisomesh::Result<()> {
     let fp: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(2);
     let nodal = args.iter().any(|a| a == "nodal");
     let iso = args.iter().any(|a| a == "iso");
+    let grade: f64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1.0);
     let periods: usize = std::env::var("ZALESAK_PERIODS")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -23,7 +24,11 @@ fn main() -> anisomesh::Result<()> {
             stretching: 200.0,
             isotropic: iso,
         },
-        metric_eps: eps,
+        metric: anisomesh::adapt::LevelSetMetric {
+            eps,
+            grade,
+            ..ZalesakOptions::default().metric
+        },
         periods,
         fixed_point_iterations: fp,
         advect: AdvectOptions {

@@ -1,7 +1,9 @@
 //! Each adaptation operator on small meshes, with `check()` after every operation: boundaries,
 //! labels and corners preserved, areas preserved by split/flip/collapse on straight boundaries.
 
-use anisomesh::adapt::{collapse, flip, smooth, split, AdaptOptions, Ctx, NoSource, OpParams};
+use anisomesh::adapt::{
+    collapse, flip, insert, smooth, split, AdaptOptions, Ctx, NoSource, OpParams,
+};
 use anisomesh::{DVec2, GridPattern, Mesh2, Sym2, NONE};
 
 fn square(n: usize) -> Mesh2 {
@@ -13,6 +15,8 @@ fn params() -> OpParams {
         l_min: std::f64::consts::FRAC_1_SQRT_2,
         l_max: std::f64::consts::SQRT_2,
         q_max: 5.0,
+        curve_tol: 0.0,
+        insertion: false,
     }
 }
 
@@ -260,5 +264,45 @@ fn smoothing_recentres_a_perturbed_vertex() {
             (f[0][v] - (p.x + p.y)).abs() < 1e-12,
             "field not transported at {v}"
         );
+    }
+}
+
+#[test]
+fn delaunay_insertion_builds_a_valid_star_and_keeps_area() {
+    let mut mesh = square(6);
+    let a0 = mesh.area();
+    // Stretched metric along (1, 1): the metric circumcircles are long ellipses, so cavities
+    // hold more than the two triangles of the edge.
+    let d = DVec2::new(1.0, 1.0).normalize();
+    let m = Sym2::from_eigen([1.0 / 0.3f64.powi(2), 1.0 / 0.02f64.powi(2)], [d, d.perp()]);
+    let mut metric = vec![m; mesh.n_points()];
+    let mut f: Vec<Vec<f64>> = vec![mesh.points.iter().map(|p| 3.0 * p.x + p.y).collect()];
+    let mut ctx = Ctx::new(&mut mesh, &mut metric, &mut f, None, params());
+    let mut inserted = 0;
+    let mut big_cavity = 0;
+    for t in 0..ctx.mesh.n_tris() {
+        for i in 0..3 {
+            if ctx.mesh.is_deleted(t) || ctx.mesh.neighbours[t][i] == NONE {
+                continue;
+            }
+            if let Some(sp) = split::check(&ctx, t as u32, i) {
+                if let Some(ip) = insert::check(&mut ctx, &sp) {
+                    big_cavity += (ip.cavity.len() > 2) as usize;
+                    insert::apply(&mut ctx, &ip);
+                    ctx.mesh.check().unwrap();
+                    inserted += 1;
+                }
+            }
+        }
+    }
+    assert!(inserted >= 20, "{inserted} insertions");
+    assert!(
+        big_cavity >= 5,
+        "{big_cavity} cavities beyond the edge's two triangles"
+    );
+    drop(ctx);
+    assert!(rel(mesh.area(), a0) < 1e-13);
+    for (v, p) in mesh.points.iter().enumerate() {
+        assert!((f[0][v] - (3.0 * p.x + p.y)).abs() < 1e-12);
     }
 }

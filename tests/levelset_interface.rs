@@ -189,3 +189,41 @@ fn empty_and_invalid_fields() {
     assert!(interface_distance(&[], &c, 4).hausdorff.is_infinite());
     assert!(c.exact_area().is_some());
 }
+
+mod robustness {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        /// Random fields with many exact zeros: extraction either reports an empty level set or
+        /// returns chains whose total length is the interface length, with no repeated points,
+        /// open chains ending on the boundary of the square, and the area within [0, 1].
+        #[test]
+        fn chains_are_consistent(
+            vals in proptest::collection::vec(prop_oneof![Just(-1.0), Just(0.0), Just(1.0), -1.0f64..1.0], 49),
+            pattern in prop_oneof![Just(GridPattern::Right), Just(GridPattern::UnionJack)],
+        ) {
+            let mesh = grid(0.0, 1.0, 6, pattern);
+            let u = vals;
+            let area = enclosed_area(&mesh, &u).unwrap();
+            prop_assert!((-1e-15..=1.0 + 1e-15).contains(&area));
+            let length = interface_length(&mesh, &u).unwrap();
+            match extract_zero_level(&mesh, &u) {
+                Err(Error::EmptyLevelSet(_)) => prop_assert_eq!(length, 0.0),
+                Err(e) => prop_assert!(false, "unexpected error {}", e),
+                Ok(lines) => {
+                    let total: f64 = lines.iter().map(|l| l.length()).sum();
+                    prop_assert!((total - length).abs() < 1e-12, "{} vs {}", total, length);
+                    let on_boundary = |p: DVec2| p.x == 0.0 || p.x == 1.0 || p.y == 0.0 || p.y == 1.0;
+                    for l in &lines {
+                        prop_assert!(l.points.windows(2).all(|w| w[0] != w[1]));
+                        if !l.closed {
+                            prop_assert!(on_boundary(l.points[0]) && on_boundary(*l.points.last().unwrap()));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

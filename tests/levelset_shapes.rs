@@ -2,7 +2,7 @@
 //! analytic derivatives against finite differences.
 
 use anisomesh::levelset::{
-    shape_by_name, Circle, Difference, Flower, Intersection, Shape, Union, Zalesak,
+    shape_by_name, Circle, Difference, Flower, Intersection, Rotated, Shape, Union, Zalesak,
 };
 use anisomesh::{DVec2, Sym2};
 use std::f64::consts::PI;
@@ -254,4 +254,34 @@ fn shapes_by_name() {
     for valid in ["circle", "zalesak", "flower", "square"] {
         assert!(err.contains(valid), "{err}");
     }
+}
+
+#[test]
+fn rotated_shape_is_the_rigidly_moved_shape() {
+    let angle = 0.7;
+    let r = Rotated {
+        shape: Box::new(Zalesak::default()),
+        pivot: DVec2::ZERO,
+        angle,
+    };
+    let z = Zalesak::default();
+    let (s, c) = angle.sin_cos();
+    let rot = |p: DVec2| DVec2::new(c * p.x - s * p.y, s * p.x + c * p.y);
+    let mut rng = Rng(5);
+    for _ in 0..500 {
+        let p = rng.point(DVec2::new(-0.8, -0.1), DVec2::new(0.8, 1.6));
+        assert!((r.distance(rot(p)) - z.distance(p)).abs() < 1e-12);
+        assert!((r.gradient(rot(p)) - rot(z.gradient(p))).length() < 1e-12);
+    }
+    // Hessian against finite differences at a corner-dominated and an arc-dominated point.
+    for p in [rot(DVec2::new(0.08, 0.87)), rot(DVec2::new(0.8, 0.9))] {
+        assert_hessian_close(r.hessian(p), FdOnly(&r).hessian(p), 1e-5, p);
+    }
+    assert_eq!(r.exact_area(), z.exact_area());
+    for q in r.boundary_samples(300).unwrap() {
+        assert!(r.distance(q).abs() < 1e-12);
+    }
+    // Bad parameters are errors.
+    assert!(Zalesak::new(DVec2::ZERO, 0.5, 0.6, 0.1).is_err());
+    assert!(Zalesak::new(DVec2::ZERO, 0.5, 0.06, 0.9).is_err());
 }

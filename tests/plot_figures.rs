@@ -220,3 +220,23 @@ fn line_chart() {
     lines_png(&path, &plot).unwrap();
     assert_png(&path, 700, 450);
 }
+
+#[test]
+fn colour_scale_and_viridis() {
+    use anisomesh::plot::colormap::{viridis, ColourScale, INVALID_COLOUR};
+    assert_eq!(viridis(0.0), RGBColor(68, 1, 84));
+    assert_eq!(viridis(1.0), RGBColor(253, 231, 37));
+    assert_eq!(viridis(0.5), RGBColor(33, 145, 140));
+    // Perceptual ordering: luminance increases monotonically along the map.
+    let lum = |c: RGBColor| 0.2126 * c.0 as f64 + 0.7152 * c.1 as f64 + 0.0722 * c.2 as f64;
+    let l: Vec<f64> = (0..=100).map(|i| lum(viridis(i as f64 / 100.0))).collect();
+    assert!(l.windows(2).all(|w| w[1] > w[0]));
+    let s = ColourScale::fit(&[1e-3, 1e-1, f64::NAN, -1.0], true).unwrap();
+    assert_eq!((s.lo, s.hi), (1e-3, 1e-1));
+    assert!((s.position(1e-2).unwrap() - 0.5).abs() < 1e-12);
+    assert!((s.value_at(0.5) - 1e-2).abs() < 1e-15);
+    assert_eq!(s.colour(-1.0), INVALID_COLOUR);
+    assert!(ColourScale::fit(&[f64::NAN], false).is_none());
+    let flat = ColourScale::fit(&[2.0, 2.0], false).unwrap();
+    assert!(flat.lo < 2.0 && flat.hi > 2.0);
+}

@@ -27,6 +27,14 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
             if ends[0] != b && ends[1] != b {
                 return None;
             }
+            // The curve must stay where it is: `a` within `curve_tol` of the new segment
+            // (other end, b); exactly collinear for the default tolerance 0.
+            let other = if ends[0] == b { ends[1] } else { ends[0] };
+            let (po, pa, pb) = (ctx.p(other), ctx.p(a), ctx.p(b));
+            let o = crate::geom::orient2d(po, pa, pb);
+            if o != 0.0 && o.abs() > ctx.params.curve_tol * (pb - po).length() {
+                return None;
+            }
         }
         VClass::Free => {}
     }
@@ -66,7 +74,12 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     mesh.for_each_fan_triangle(b, |t| fan2.push(t));
     let in_ring_b = |w: u32| fan2.iter().any(|&t| mesh.tris[t as usize].contains(&w));
     let mut ok = true;
-    let (p_b, m_b, l_b) = (ctx.p(b), *ctx.m(b), ctx.logm[b as usize]);
+    let (p_b, m_b) = (ctx.p(b), *ctx.m(b));
+    let l_b = if ctx.fast_q {
+        m_b
+    } else {
+        ctx.logm[b as usize]
+    };
     let mut q_old: f64 = 1.0;
     let mut q_new: f64 = 1.0;
     for &t in &ctx.fan {
@@ -87,7 +100,7 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
             ok = false;
             break;
         }
-        q_new = q_new.max(ctx.q_moved(tri, a, p_b, &l_b));
+        q_new = q_new.max(ctx.q_moved(tri, a, p_b, &m_b, &l_b));
         // New edges b -> w must not be too long.
         for w in [tri[next(ia)], tri[prev(ia)]] {
             if w != apex[0] && w != apex[1] {
@@ -194,12 +207,14 @@ pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
     ctx.fan = fan;
 }
 
-/// One collapse pass over the vertices: each vertex with an edge shorter than `l_min` is
+/// One collapse pass over the vertices whose ball changed since the last collapse pass: each vertex with an edge shorter than `l_min` is
 /// collapsed onto the end of its shortest such edge that passes the check (trying the others in
 /// order of length). A vertex that received a collapse is not collapsed again in the same pass.
 /// Returns the number of collapses.
 pub fn pass(ctx: &mut Ctx) -> usize {
+    let since = ctx.last_collapse;
     ctx.new_pass();
+    ctx.last_collapse = ctx.gen;
     let nv = ctx.mesh.n_points();
     let l_min = ctx.params.l_min;
     let mut count = 0;
@@ -213,6 +228,10 @@ pub fn pass(ctx: &mut Ctx) -> usize {
             continue;
         }
         ctx.load_fan(a);
+        // Only vertices whose ball changed since the last collapse pass.
+        if ctx.fan.iter().all(|&t| ctx.tstamp[t as usize] < since) {
+            continue;
+        }
         short.clear();
         for k in 0..ctx.fan.len() {
             let tri = ctx.mesh.tris[ctx.fan[k] as usize];

@@ -22,6 +22,13 @@ pub struct AdaptOptions {
     /// Quality floor as a maximal `Q_ani`: collapses and moves may not create a worse triangle
     /// unless the ball was already worse (default 5).
     pub q_max: f64,
+    /// How far a boundary/interface vertex removed by a collapse may lie off the new segment
+    /// (absolute distance; default 0: polygonal curves keep their exact shape).
+    pub curve_tol: f64,
+    /// Use the anisotropic Delaunay insertion kernel instead of plain splits where possible
+    /// (default true: on the r = 0.5 circle, eps 1e-4, it gave mean `Q_ani` 1.040 vs 1.043,
+    /// worst 1.32 vs 1.37, and a quarter of the flips).
+    pub insertion: bool,
     /// Maximal number of split/collapse cycles (default 20).
     pub max_cycles: usize,
     /// Final flip + smoothing sweeps after the cycles (default 3).
@@ -36,6 +43,8 @@ impl Default for AdaptOptions {
             l_min: std::f64::consts::FRAC_1_SQRT_2,
             l_max: std::f64::consts::SQRT_2,
             q_max: 5.0,
+            curve_tol: 0.0,
+            insertion: true,
             max_cycles: 20,
             final_sweeps: 3,
             check_each_pass: false,
@@ -57,6 +66,16 @@ impl AdaptOptions {
     /// Sets the quality floor (maximal `Q_ani`).
     pub fn q_max(mut self, v: f64) -> Self {
         self.q_max = v;
+        self
+    }
+    /// Sets the curve tolerance of collapses.
+    pub fn curve_tol(mut self, v: f64) -> Self {
+        self.curve_tol = v;
+        self
+    }
+    /// Turns the Delaunay insertion kernel on or off.
+    pub fn insertion(mut self, v: bool) -> Self {
+        self.insertion = v;
         self
     }
     /// Sets the cycle cap.
@@ -109,7 +128,8 @@ pub struct PassReport {
     pub seconds: f64,
 }
 
-/// What [`adapt`] did. `converged == false` means the cycle cap was reached with edges still
+/// What [`adapt`] did. `converged` means the last cycle split or collapsed at most one edge per
+/// 2,000 vertices; `converged == false` means the cycle cap was reached with edges still
 /// out of range: the mesh is valid, only not fully adapted.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct AdaptReport {
@@ -180,6 +200,8 @@ pub fn adapt(
         l_min: opts.l_min,
         l_max: opts.l_max,
         q_max: opts.q_max,
+        curve_tol: opts.curve_tol,
+        insertion: opts.insertion,
     };
     let mut rep = AdaptReport::default();
     {
@@ -223,7 +245,9 @@ pub fn adapt(
             let nc = run(&mut ctx, PassKind::Collapse, &mut rep)?;
             run(&mut ctx, PassKind::Flip, &mut rep)?;
             run(&mut ctx, PassKind::Smooth, &mut rep)?;
-            if ns + nc == 0 {
+            // Converged: the cycle changed (almost) nothing — at most 1 in 2,000 vertices.
+            let nv = ctx.mesh.n_points();
+            if ns + nc <= nv / 2000 {
                 rep.converged = true;
                 break;
             }

@@ -19,6 +19,16 @@ pub fn q_ani_log(p: [DVec2; 3], l: [&Sym2; 3]) -> f64 {
     metric::q_ani(p, &s.exp())
 }
 
+/// `Q_ani` of the triangle `p` in the arithmetic mean of its vertex metrics: no eigen-solve, the
+/// fast variant the operators use for their accept/reject decisions (within a few percent of
+/// [`q_ani_log`] where the metric varies smoothly, and never optimistic: the arithmetic mean
+/// dominates the log-Euclidean mean, so lengths are not under-estimated).
+#[inline]
+pub fn q_ani_mean(p: [DVec2; 3], m: [&Sym2; 3]) -> f64 {
+    let s = m[0].add(m[1]).add(m[2]).scale(1.0 / 3.0);
+    metric::q_ani(p, &s)
+}
+
 /// Weighted log-Euclidean interpolation of up to three metrics ([`metric::interpolate_log`]).
 pub fn interpolate(w: &[(f64, &Sym2)]) -> Sym2 {
     let mut items = [(0.0, Sym2::IDENTITY); 3];

@@ -22,6 +22,7 @@ mod topo;
 
 pub mod collapse;
 pub mod flip;
+pub mod insert;
 pub mod smooth;
 pub mod split;
 
@@ -29,5 +30,5 @@ mod driver;
 pub mod sources;
 
 pub use driver::{adapt, AdaptOptions, AdaptReport, PassKind, PassReport};
-pub use sources::{AnalyticLevelSetSource, LevelSetMetric, MetricSource, NoSource};
+pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
 pub use topo::{Ctx, OpParams, VClass};

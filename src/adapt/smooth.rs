@@ -38,7 +38,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
     let mesh = &*ctx.mesh;
     let pv = ctx.p(v);
     let mv = *ctx.m(v);
-    let lv = ctx.logm[v as usize];
+    let lv = if ctx.fast_q { mv } else { ctx.logm[v as usize] };
     let mut target = DVec2::ZERO;
     let mut q_old: f64 = 1.0;
     for &t in &ctx.fan {
@@ -73,7 +73,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
                 ok = false;
                 break;
             }
-            q_new = q_new.max(ctx.q_moved(tri, v, p, &lv));
+            q_new = q_new.max(ctx.q_moved(tri, v, p, &mv, &lv));
             if q_new >= q_old {
                 ok = false;
                 break;
@@ -106,7 +106,9 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     let vu = v as usize;
     ctx.mesh.points[vu] = plan.p;
     ctx.metric[vu] = m;
-    ctx.logm[vu] = m.log();
+    if !ctx.fast_q {
+        ctx.logm[vu] = m.log();
+    }
     for &t in &ctx.fan {
         ctx.tstamp[t as usize] = ctx.gen;
     }

@@ -164,3 +164,63 @@ impl<F: Fn(DVec2) -> (f64, DVec2, Sym2) + Sync> MetricSource for AnalyticLevelSe
         }
     }
 }
+
+impl LevelSetMetric {
+    /// The metric at every vertex from the P1 level set `u` alone: gradient and Hessian by the
+    /// least-squares recovery of 004 §4.3 ([`crate::recovery::recover_ls`]), then
+    /// [`LevelSetMetric::metric`]. Errors: those of the recovery (bad field, tiny components).
+    pub fn field_from_p1(&self, mesh: &Mesh2, u: &[f64]) -> Result<Vec<Sym2>> {
+        self.validate()?;
+        let rec = crate::recovery::recover_ls(mesh, u)?;
+        Ok((0..mesh.n_points())
+            .into_par_iter()
+            .map(|v| self.metric(u[v], rec.gradient[v], &rec.hessian[v]))
+            .collect())
+    }
+}
+
+/// The interpolation-error metric of a P1 field: recovered Hessian (004 §4.3) turned into the
+/// multiscale `L^p` metric with a target vertex count ([`crate::metric::multiscale_lp`]), or its
+/// isotropic variant.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct HessianMetric {
+    /// The `L^p` norm exponent (`f64::INFINITY` allowed).
+    pub p: f64,
+    pub target_vertices: usize,
+    pub hmin: f64,
+    pub hmax: f64,
+    pub max_aniso: f64,
+    pub isotropic: bool,
+}
+
+impl Default for HessianMetric {
+    fn default() -> Self {
+        HessianMetric {
+            p: 2.0,
+            target_vertices: 5000,
+            hmin: 1e-4,
+            hmax: 0.5,
+            max_aniso: 1e4,
+            isotropic: false,
+        }
+    }
+}
+
+impl HessianMetric {
+    /// The metric field for the P1 field `u` on `mesh`.
+    pub fn field(&self, mesh: &Mesh2, u: &[f64]) -> Result<Vec<Sym2>> {
+        let bounds = MetricBounds::new(self.hmin, self.hmax, self.max_aniso)?;
+        let h = crate::recovery::hessian_ls(mesh, u)?;
+        if self.isotropic {
+            crate::metric::interpolation_error_metric_iso(
+                mesh,
+                &h,
+                self.p,
+                self.target_vertices,
+                &bounds,
+            )
+        } else {
+            crate::metric::multiscale_lp(mesh, &h, self.p, self.target_vertices, &bounds)
+        }
+    }
+}

@@ -140,10 +140,15 @@ pub fn apply(ctx: &mut Ctx, plan: &SplitPlan) -> u32 {
     m
 }
 
-/// One split pass: every edge longer than `l_max`, longest first, at most one split per triangle
-/// per pass (an independent set). Returns the number of splits.
+/// One split pass: every edge longer than `l_max` next to a triangle modified since the last
+/// split pass, longest first, at most one split per triangle
+/// per pass (an independent set). With `params.insertion` the Delaunay insertion kernel
+/// ([`super::insert`]) is tried first on unlabelled interior edges. Returns the number of new
+/// vertices.
 pub fn pass(ctx: &mut Ctx, cand: &mut Vec<(f64, u32, u8)>) -> usize {
+    let since = ctx.last_split;
     ctx.new_pass();
+    ctx.last_split = ctx.gen;
     cand.clear();
     let nt = ctx.mesh.n_tris();
     let l_max = ctx.params.l_max;
@@ -155,6 +160,10 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<(f64, u32, u8)>) -> usize {
         for i in 0..3 {
             let nb = ctx.mesh.neighbours[t][i];
             if nb != NONE && (nb as usize) < t {
+                continue;
+            }
+            // Only edges of triangles modified since the last split pass.
+            if ctx.tstamp[t] < since && (nb == NONE || ctx.tstamp[nb as usize] < since) {
                 continue;
             }
             let l = ctx.len(tri[next(i)], tri[prev(i)]);
@@ -175,6 +184,13 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<(f64, u32, u8)>) -> usize {
             continue;
         }
         if let Some(plan) = check(ctx, t, i as usize) {
+            if ctx.params.insertion {
+                if let Some(ins) = super::insert::check(ctx, &plan) {
+                    super::insert::apply(ctx, &ins);
+                    count += 1;
+                    continue;
+                }
+            }
             apply(ctx, &plan);
             count += 1;
         }

@@ -18,6 +18,13 @@ pub struct OpParams {
     /// Quality floor: an operation may not create a triangle with `Q_ani` above this unless the
     /// triangles it replaces were already worse.
     pub q_max: f64,
+    /// Distance a collapsing curve vertex may lie off the segment that replaces its two curve
+    /// edges (twice the area it removes, per unit length). 0: only exactly collinear vertices
+    /// of a boundary or interface curve are removed.
+    pub curve_tol: f64,
+    /// Insert new vertices with the anisotropic Delaunay kernel (`insert.rs`) where possible
+    /// instead of plain edge splits.
+    pub insertion: bool,
 }
 
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
@@ -47,6 +54,11 @@ pub struct Ctx<'a> {
     /// Generation of the last flip / smoothing pass: only triangles modified since are examined.
     pub(crate) last_flip: u32,
     pub(crate) last_smooth: u32,
+    pub(crate) last_split: u32,
+    pub(crate) last_collapse: u32,
+    /// Use the arithmetic-mean element metric in operator decisions (faster; the default). Set
+    /// with [`Ctx::exact_quality`].
+    pub(crate) fast_q: bool,
     pub(crate) fan: Vec<u32>,
     pub(crate) fan2: Vec<u32>,
     pub(crate) scratch_f: Vec<f64>,
@@ -64,8 +76,9 @@ impl<'a> Ctx<'a> {
     ) -> Ctx<'a> {
         let (nt, nv) = (mesh.n_tris(), mesh.n_points());
         let nf = fields.len();
-        use rayon::prelude::*;
-        let logm = metric.par_iter().map(|m| m.log()).collect();
+        // Log-metrics are only kept for the exact (log-Euclidean) element metric; see `fast_q`.
+        let logm = Vec::new();
+        let _ = &metric;
         Ctx {
             mesh,
             metric,
@@ -78,10 +91,22 @@ impl<'a> Ctx<'a> {
             logm,
             last_flip: 0,
             last_smooth: 0,
+            last_split: 0,
+            last_collapse: 0,
+            fast_q: true,
             fan: Vec::with_capacity(16),
             fan2: Vec::with_capacity(16),
             scratch_f: vec![0.0; nf],
         }
+    }
+
+    /// Makes the operators judge quality with the log-Euclidean element metric
+    /// ([`crate::metric::element_metric`]) instead of the arithmetic mean (slower).
+    pub fn exact_quality(mut self) -> Self {
+        use rayon::prelude::*;
+        self.logm = self.metric.par_iter().map(|m| m.log()).collect();
+        self.fast_q = false;
+        self
     }
 
     /// Starts a new pass: every stamp becomes stale.
@@ -109,13 +134,21 @@ impl<'a> Ctx<'a> {
     /// `Q_ani` of the triangle `(a, b, c)` at its current positions.
     #[inline]
     pub(crate) fn q(&self, tri: [u32; 3]) -> f64 {
-        kernel::q_ani_log(tri.map(|v| self.p(v)), tri.map(|v| &self.logm[v as usize]))
+        if self.fast_q {
+            kernel::q_ani_mean(tri.map(|v| self.p(v)), tri.map(|v| self.m(v)))
+        } else {
+            kernel::q_ani_log(tri.map(|v| self.p(v)), tri.map(|v| &self.logm[v as usize]))
+        }
     }
 
     /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with log-metric `lv`.
     #[inline]
-    pub(crate) fn q_moved(&self, tri: [u32; 3], v: u32, pv: DVec2, lv: &Sym2) -> f64 {
+    pub(crate) fn q_moved(&self, tri: [u32; 3], v: u32, pv: DVec2, mv: &Sym2, lv: &Sym2) -> f64 {
         let p = tri.map(|w| if w == v { pv } else { self.p(w) });
+        if self.fast_q {
+            let m = tri.map(|w| if w == v { mv } else { self.m(w) });
+            return kernel::q_ani_mean(p, m);
+        }
         let l = tri.map(|w| if w == v { lv } else { &self.logm[w as usize] });
         kernel::q_ani_log(p, l)
     }
@@ -175,7 +208,9 @@ impl<'a> Ctx<'a> {
         self.mesh.required.push(false);
         self.mesh.vert_tri.push(NONE);
         self.metric.push(m);
-        self.logm.push(m.log());
+        if !self.fast_q {
+            self.logm.push(m.log());
+        }
         for (f, &x) in self.fields.iter_mut().zip(&self.scratch_f) {
             f.push(x);
         }

@@ -109,8 +109,10 @@ pub fn foot<V: Velocity + ?Sized>(v: &V, x: DVec2, t0: f64, t1: f64, opts: &Foot
 }
 
 /// Locates the points `pts` in `mesh` by walking (`Mesh2::locate`). Each point's walk starts
-/// from `hints[i]` when given and valid, else from the previous hit of the same parallel chunk,
-/// so spatially coherent point lists are located in a few steps each.
+/// from `hints[i]` when given and valid; otherwise the points are visited in Morton (Z-curve)
+/// order of their coordinates and each walk starts from the previous hit of the same parallel
+/// chunk, so every walk is a few steps long whatever the numbering of the points (adapted
+/// meshes are not numbered coherently).
 pub fn locate_all(mesh: &Mesh2, pts: &[DVec2], hints: Option<&[u32]>) -> Result<Vec<Location>> {
     if let Some(h) = hints {
         if h.len() != pts.len() {
@@ -130,7 +132,32 @@ pub fn locate_all(mesh: &Mesh2, pts: &[DVec2], hints: Option<&[u32]>) -> Result<
     let (lo, hi) = mesh
         .bounding_box()
         .ok_or_else(|| Error::InvalidInput("locate_all: the mesh has no vertex".into()))?;
+    let order: Vec<u32> = if hints.is_some() {
+        (0..pts.len() as u32).collect()
+    } else {
+        morton_order(pts, lo, hi)
+    };
     let chunk = 512;
+    let located: Vec<Location> = order
+        .par_chunks(chunk)
+        .flat_map_iter(|idx| {
+            let mut prev = NONE;
+            idx.iter()
+                .map(|&i| {
+                    let i = i as usize;
+                    let mut start = prev;
+                    if let Some(h) = hints {
+                        if h[i] < nt && !mesh.is_deleted(h[i] as usize) {
+                            start = h[i];
+                        }
+                    }
+                    let loc = locate_one(mesh, pts[i], start, lo, hi);
+                    prev = loc.tri();
+                    loc
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
     let mut out = vec![
         Location::Outside {
             tri: NONE,
@@ -138,37 +165,49 @@ pub fn locate_all(mesh: &Mesh2, pts: &[DVec2], hints: Option<&[u32]>) -> Result<
         };
         pts.len()
     ];
-    out.par_chunks_mut(chunk).enumerate().for_each(|(c, slot)| {
-        let mut prev = NONE;
-        for (k, s) in slot.iter_mut().enumerate() {
-            let i = c * chunk + k;
-            let mut start = prev;
-            if let Some(h) = hints {
-                if h[i] < nt && !mesh.is_deleted(h[i] as usize) {
-                    start = h[i];
-                }
-            }
-            let p = pts[i];
-            let loc = if p.cmpge(lo).all() && p.cmple(hi).all() {
-                mesh.locate(p, start)
-            } else {
-                // Outside the bounding box: locate the clamped point instead, so the walk
-                // does not end in `locate`'s brute-force confirmation (O(n) per point).
-                let q = p.clamp(lo, hi);
-                let tri = mesh.locate(q, start).tri();
-                let bary = if tri == NONE {
-                    [f64::NAN; 3]
-                } else {
-                    let [a, b, c] = mesh.tri_points(tri as usize);
-                    crate::geom::barycentric(a, b, c, p)
-                };
-                Location::Outside { tri, bary }
-            };
-            prev = loc.tri();
-            *s = loc;
-        }
-    });
+    for (k, &i) in order.iter().enumerate() {
+        out[i as usize] = located[k];
+    }
     Ok(out)
+}
+
+/// One walk; points outside the bounding box `[lo, hi]` are reported outside, with the
+/// triangle that holds their clamped position (so the walk does not end in `locate`'s O(n)
+/// brute-force confirmation).
+fn locate_one(mesh: &Mesh2, p: DVec2, start: u32, lo: DVec2, hi: DVec2) -> Location {
+    if p.cmpge(lo).all() && p.cmple(hi).all() {
+        return mesh.locate(p, start);
+    }
+    let tri = mesh.locate(p.clamp(lo, hi), start).tri();
+    let bary = if tri == NONE {
+        [f64::NAN; 3]
+    } else {
+        let [a, b, c] = mesh.tri_points(tri as usize);
+        crate::geom::barycentric(a, b, c, p)
+    };
+    Location::Outside { tri, bary }
+}
+
+/// The indices of `pts` sorted along a Z-order curve of a 2^16 x 2^16 grid of `[lo, hi]`.
+fn morton_order(pts: &[DVec2], lo: DVec2, hi: DVec2) -> Vec<u32> {
+    let ext = (hi - lo).max(DVec2::splat(1e-300));
+    let spread = |mut x: u64| {
+        x &= 0xffff;
+        x = (x | (x << 8)) & 0x00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333;
+        (x | (x << 1)) & 0x5555_5555
+    };
+    let mut keys: Vec<(u64, u32)> = pts
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let q = ((*p - lo) / ext).clamp(DVec2::ZERO, DVec2::ONE) * 65535.0;
+            (spread(q.x as u64) | (spread(q.y as u64) << 1), i as u32)
+        })
+        .collect();
+    keys.par_sort_unstable();
+    keys.into_iter().map(|(_, i)| i).collect()
 }
 
 /// For each vertex of `mesh`, one triangle containing it (its seed `vert_tri`): the natural

@@ -133,15 +133,16 @@ pub struct ZalesakOptions {
     pub periods: usize,
     /// Revolutions (1 = back to the start).
     pub revolutions: f64,
-    /// Interface error bound ε of the level-set metric (004 eq. (6)); sets the vertex count.
-    pub metric_eps: f64,
+    /// The level-set metric (004 eq. (6): ε, band, gradation); its `hmin`, `hmax` and
+    /// `isotropic` are taken from [`ZalesakMesh::Adapted`].
+    pub metric: LevelSetMetric,
     /// Fixed-point iterations per period (adapted meshes only).
     pub fixed_point_iterations: usize,
     /// The advection step (foot scheme, evaluation, form).
     pub advect: AdvectOptions,
     /// Restore the initial area after each period (004 §5.1 "mass correction").
     pub mass_correction: bool,
-    /// Also run a uniform mesh of similar vertex count.
+    /// Also run a uniform mesh and an isotropic adapted mesh of similar vertex count.
     pub compare: bool,
     /// Output directory for `zalesak.json` and `zalesak.csv` (none: no files).
     pub out_dir: Option<PathBuf>,
@@ -155,7 +156,11 @@ impl Default for ZalesakOptions {
                 stretching: 200.0,
                 isotropic: false,
             },
-            metric_eps: 1e-4,
+            metric: LevelSetMetric {
+                eps: 1e-3,
+                grade: 1.0,
+                ..LevelSetMetric::default()
+            },
             periods: 16,
             revolutions: 1.0,
             fixed_point_iterations: 5,
@@ -196,9 +201,13 @@ pub struct ZalesakReport {
     /// Fixed-point iterations per period (1 per period on a fixed mesh).
     pub fixed_point_iterations: Vec<usize>,
     pub seconds: f64,
+    /// Seconds spent adapting (initial mesh included) and advecting/transferring.
+    pub adapt_seconds: f64,
+    pub advect_seconds: f64,
     pub series: Vec<ZalesakSample>,
-    /// The uniform-mesh comparison run (`--compare`).
+    /// The comparison runs (`--compare`): uniform and isotropic adapted meshes.
     pub compare_uniform: Option<Box<ZalesakReport>>,
+    pub compare_isotropic: Option<Box<ZalesakReport>>,
 }
 
 impl ZalesakReport {
@@ -214,14 +223,14 @@ impl ZalesakReport {
     pub fn summary(&self) -> String {
         let (ea, ep) = self.relative_errors();
         let mut s = format!(
-            "Zalesak ({:?}): {:.1} s, vertices mean {:.0} max {}\n\
+            "Zalesak ({:?}): {:.1} s (adapt {:.1} s, advect {:.1} s), vertices mean {:.0} max {}\n\
              {:>10} {:>14} {:>14} {:>14}\n\
              {:>10} {:>14.10} {:>14.10} {:>14}\n\
              {:>10} {:>14.10} {:>14.10} {:>14}\n\
              {:>10} {:>14.10} {:>14.10} {:>14}\n\
              {:>10} {:>14.10} {:>14.10} {:>14}\n\
              final relative error: area {:+.3e}, perimeter {:+.3e}; interface distance max {:.2e} mean {:.2e} (exact->interface {:.2e})\n",
-            self.mesh, self.seconds, self.vertices_mean, self.vertices_max,
+            self.mesh, self.seconds, self.adapt_seconds, self.advect_seconds, self.vertices_mean, self.vertices_max,
             "", "measured", "exact", "paper",
             "area0", self.area_initial, EXACT_AREA, PAPER[0],
             "area1", self.area_final, EXACT_AREA, PAPER[1],
@@ -229,7 +238,10 @@ impl ZalesakReport {
             "perim1", self.perimeter_final, EXACT_PERIMETER, PAPER[3],
             ea, ep, self.interface_to_exact_max, self.interface_to_exact_mean, self.exact_to_interface_max,
         );
-        if let Some(c) = &self.compare_uniform {
+        for c in [&self.compare_uniform, &self.compare_isotropic]
+            .into_iter()
+            .flatten()
+        {
             s.push_str("--- comparison ---\n");
             s.push_str(&c.summary());
         }
@@ -275,9 +287,8 @@ pub fn run(opts: &ZalesakOptions) -> Result<ZalesakReport> {
             let metric = LevelSetMetric {
                 hmin,
                 hmax: hmin * stretching,
-                eps: opts.metric_eps,
                 isotropic,
-                ..LevelSetMetric::default()
+                ..opts.metric
             };
             let mut a = LevelSetAdapter::new(metric, AdaptOptions::default())?;
             run_with_adapter(opts, Some(&mut a))
@@ -327,6 +338,8 @@ pub fn run_with_adapter(
         ZalesakMesh::Adapted { .. } => 40,
     };
     let mut mesh = initial_mesh(n, &shape, adapter.as_deref_mut(), 4)?;
+    let mut adapt_seconds = start.elapsed().as_secs_f64();
+    let mut advect_seconds = 0.0;
     let mut u: Vec<f64> = mesh
         .points
         .iter()
@@ -361,11 +374,15 @@ pub fn run_with_adapter(
                 };
                 let res = advance_period(&mesh, &u, &v, t0, t1, a, &fp)?;
                 iters = res.iterations;
+                adapt_seconds += res.adapt_seconds;
+                advect_seconds += res.advect_seconds;
                 mesh = res.mesh;
                 u = res.u;
             }
             None => {
+                let ta = Instant::now();
                 u = advect::advect(&mesh, &u, &mesh, &v, t0, t1, &opts.advect)?;
+                advect_seconds += ta.elapsed().as_secs_f64();
                 iters = 1;
             }
         }
@@ -404,8 +421,11 @@ pub fn run_with_adapter(
         vertices_max: verts.iter().copied().max().unwrap_or(0),
         fixed_point_iterations: fp_iters,
         seconds: start.elapsed().as_secs_f64(),
+        adapt_seconds,
+        advect_seconds,
         series,
         compare_uniform: None,
+        compare_isotropic: None,
     };
     if opts.compare {
         let m = ((report.vertices_mean.sqrt() - 1.0).round() as usize).max(2);
@@ -416,11 +436,63 @@ pub fn run_with_adapter(
             ..opts.clone()
         };
         report.compare_uniform = Some(Box::new(run_with_adapter(&cmp, None)?));
+        if let ZalesakMesh::Adapted {
+            hmin, stretching, ..
+        } = opts.mesh
+        {
+            let h = isotropic_hmin_for(report.vertices_mean, hmin, stretching, opts)?;
+            let iso = ZalesakOptions {
+                mesh: ZalesakMesh::Adapted {
+                    hmin: h,
+                    stretching: hmin * stretching / h,
+                    isotropic: true,
+                },
+                compare: false,
+                out_dir: None,
+                ..opts.clone()
+            };
+            report.compare_isotropic = Some(Box::new(run(&iso)?));
+        }
     }
     if let Some(dir) = &opts.out_dir {
         write_outputs(dir, &report)?;
     }
     Ok(report)
+}
+
+/// The `hmin` of the isotropic variant whose initial adapted mesh has about `target` vertices
+/// (a few secant steps on `log(vertices)` against `log(hmin)`; only initial meshes are built).
+fn isotropic_hmin_for(
+    target: f64,
+    hmin: f64,
+    stretching: f64,
+    opts: &ZalesakOptions,
+) -> Result<f64> {
+    let shape = SlottedDisk::default();
+    let count = |h: f64| -> Result<f64> {
+        let metric = LevelSetMetric {
+            hmin: h,
+            hmax: (hmin * stretching).max(2.0 * h),
+            isotropic: true,
+            ..opts.metric
+        };
+        let mut a = LevelSetAdapter::new(metric, AdaptOptions::default())?;
+        Ok(initial_mesh(40, &shape, Some(&mut a), 3)?.n_points() as f64)
+    };
+    // Isotropic meshes need about ten times more vertices at equal hmin (004 §5.1).
+    let mut h0 = hmin * 10.0;
+    let mut n0 = count(h0)?;
+    let mut h1 = h0 * (n0 / target).sqrt();
+    for _ in 0..3 {
+        let n1 = count(h1)?;
+        if ((n1 - target) / target).abs() < 0.1 || (n1 - n0).abs() < 1.0 {
+            break;
+        }
+        let slope = (n1.ln() - n0.ln()) / (h1.ln() - h0.ln());
+        let h2 = (h1.ln() + (target.ln() - n1.ln()) / slope.min(-0.1)).exp();
+        (h0, n0, h1) = (h1, n1, h2.clamp(h1 / 4.0, h1 * 4.0));
+    }
+    Ok(h1)
 }
 
 fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<()> {

@@ -14,6 +14,6 @@ pub use interface::{
     Polyline,
 };
 pub use shapes::{
-    nodal_distance, shape_by_name, Circle, Difference, Flower, Intersection, Shape, Union, Zalesak,
-    SHAPE_NAMES,
+    nodal_distance, shape_by_name, Circle, Difference, Flower, Intersection, Rotated, Shape, Union,
+    Zalesak, SHAPE_NAMES,
 };

@@ -492,6 +492,68 @@ impl Shape for Difference {
     }
 }
 
+/// A shape rotated by `angle` (radians, counter-clockwise) about `pivot`: the exact solution of
+/// a rigid rotation such as Zalesak's `u = (-y, x)` (004 §5.1) at time `t = angle`. Distances,
+/// derivatives, area, perimeter and boundary samples are those of the inner shape, rotated.
+pub struct Rotated {
+    pub shape: Box<dyn Shape>,
+    pub pivot: DVec2,
+    pub angle: f64,
+}
+
+impl Rotated {
+    /// `p` rotated by `sign * angle` about the pivot.
+    fn turn(&self, p: DVec2, sign: f64) -> DVec2 {
+        let (s, c) = (sign * self.angle).sin_cos();
+        let d = p - self.pivot;
+        self.pivot + DVec2::new(c * d.x - s * d.y, s * d.x + c * d.y)
+    }
+
+    fn turn_vec(&self, v: DVec2, sign: f64) -> DVec2 {
+        let (s, c) = (sign * self.angle).sin_cos();
+        DVec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+    }
+}
+
+impl Shape for Rotated {
+    fn distance(&self, p: DVec2) -> f64 {
+        self.shape.distance(self.turn(p, -1.0))
+    }
+    fn gradient(&self, p: DVec2) -> DVec2 {
+        self.turn_vec(self.shape.gradient(self.turn(p, -1.0)), 1.0)
+    }
+    /// `R H R^T` with `H` the inner Hessian at the rotated-back point.
+    fn hessian(&self, p: DVec2) -> Sym2 {
+        let h = self.shape.hessian(self.turn(p, -1.0));
+        let (s, c) = self.angle.sin_cos();
+        // Columns of R H R^T from H applied to the rotated-back basis.
+        let (e1, e2) = (DVec2::new(c, -s), DVec2::new(s, c));
+        let (h1, h2) = (
+            self.turn_vec(h.mul_vec(e1), 1.0),
+            self.turn_vec(h.mul_vec(e2), 1.0),
+        );
+        Sym2::new(h1.x, 0.5 * (h1.y + h2.x), h2.y)
+    }
+    fn exact_area(&self) -> Option<f64> {
+        self.shape.exact_area()
+    }
+    fn exact_perimeter(&self) -> Option<f64> {
+        self.shape.exact_perimeter()
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        Some(
+            self.shape
+                .boundary_samples(n)?
+                .into_iter()
+                .map(|p| self.turn(p, 1.0))
+                .collect(),
+        )
+    }
+    fn name(&self) -> String {
+        format!("rotated({}, {} rad)", self.shape.name(), self.angle)
+    }
+}
+
 /// The names [`shape_by_name`] accepts.
 pub const SHAPE_NAMES: [&str; 3] = ["circle", "zalesak", "flower"];
 

@@ -1,0 +1,202 @@
+//! Anisotropic Delaunay insertion (004 §3.5, "a modification of the Delaunay kernel to account
+//! for anisotropic elements"): a new point `p` is inserted by removing the *cavity* — the
+//! triangles whose circumcircle, measured in the metric `M_p` of the new point, contains `p` —
+//! and re-triangulating it as the star of `p`. Used instead of a plain split on unlabelled
+//! interior edges: it also reconnects the neighbourhood toward the metric.
+//!
+//! The cavity starts from the two triangles sharing the split edge and grows across unlabelled
+//! interior edges only (curves are never crossed). It is then shrunk until it is star-shaped
+//! from `p` (exact `orient2d` on each boundary edge), and the insertion is rejected (the caller
+//! falls back to a split) if it is not a topological disc without interior vertices, or if the
+//! star's worst `Q_ani` is above the floor and worse than the cavity's.
+
+use super::split::SplitPlan;
+use super::topo::Ctx;
+use crate::geom::{incircle, orient2d, DVec2};
+use crate::mesh::{next, prev, NONE};
+use crate::metric::Sym2;
+
+/// Maximal cavity size (triangles).
+const MAX_CAVITY: usize = 32;
+
+/// A planned insertion: the point, its metric, the cavity triangles and its boundary edges
+/// `(u, w, outside triangle, outside local edge, label)` in counter-clockwise order of the
+/// triangles that held them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InsertPlan {
+    pub p: DVec2,
+    pub m: Sym2,
+    pub s: f64,
+    pub ends: [u32; 2],
+    pub cavity: Vec<u32>,
+    pub boundary: Vec<(u32, u32, u32, u8, i32)>,
+}
+
+/// Upper-triangular `L` with `M = Lᵀ L`, applied to `x`: the metric-space coordinates.
+#[inline]
+fn to_metric_space(m: &Sym2, x: DVec2) -> DVec2 {
+    let a = m.xx.sqrt();
+    let b = m.xy / a;
+    let c = (m.det() / m.xx).sqrt();
+    DVec2::new(a * x.x + b * x.y, c * x.y)
+}
+
+/// Pure check: the insertion of the metric midpoint of the unlabelled interior edge planned by
+/// `split` (metric re-evaluated by the source when it has one, else interpolated).
+pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
+    let (t, i) = (split.t as usize, split.i as usize);
+    let t2 = ctx.mesh.neighbours[t][i];
+    if t2 == NONE || ctx.mesh.edge_ref[t][i] != 0 {
+        return None;
+    }
+    let tri = ctx.mesh.tris[t];
+    let (a, b) = (tri[next(i)], tri[prev(i)]);
+    let m = match ctx.source.and_then(|s| s.metric_at(split.p)) {
+        Some(m) => m,
+        None => super::kernel::interpolate(&[(1.0 - split.s, ctx.m(a)), (split.s, ctx.m(b))]),
+    };
+    let p = split.p;
+    let pm = to_metric_space(&m, p);
+    let mesh = &*ctx.mesh;
+    let mut cavity: Vec<u32> = vec![t as u32, t2];
+    let mut k = 0;
+    while k < cavity.len() && cavity.len() < MAX_CAVITY {
+        let c = cavity[k] as usize;
+        for e in 0..3 {
+            let nb = mesh.neighbours[c][e];
+            if nb == NONE || mesh.edge_ref[c][e] != 0 || cavity.contains(&nb) {
+                continue;
+            }
+            let q = mesh.tris[nb as usize].map(|v| to_metric_space(&m, mesh.points[v as usize]));
+            if incircle(q[0], q[1], q[2], pm) > 0.0 {
+                cavity.push(nb);
+            }
+        }
+        k += 1;
+    }
+    // Shrink to a star-shaped cavity (the two seeds always are).
+    loop {
+        let mut removed = false;
+        let mut idx = 2;
+        while idx < cavity.len() {
+            let c = cavity[idx] as usize;
+            let mut bad = false;
+            for e in 0..3 {
+                let nb = mesh.neighbours[c][e];
+                if nb != NONE && cavity.contains(&nb) {
+                    continue;
+                }
+                let [u, w] = mesh.edge_vertices(c, e);
+                if orient2d(mesh.points[u as usize], mesh.points[w as usize], p) <= 0.0 {
+                    bad = true;
+                }
+            }
+            if bad {
+                cavity.swap_remove(idx);
+                removed = true;
+            } else {
+                idx += 1;
+            }
+        }
+        if !removed {
+            break;
+        }
+    }
+    // Boundary edges; seeds' edges must also see p on their left.
+    let mut boundary = Vec::with_capacity(cavity.len() + 2);
+    for &c in &cavity {
+        let c = c as usize;
+        for e in 0..3 {
+            let nb = mesh.neighbours[c][e];
+            if nb != NONE && cavity.contains(&nb) {
+                continue;
+            }
+            let [u, w] = mesh.edge_vertices(c, e);
+            if orient2d(mesh.points[u as usize], mesh.points[w as usize], p) <= 0.0 {
+                return None;
+            }
+            let j = if nb != NONE {
+                mesh.mirror_edge(c, nb as usize)? as u8
+            } else {
+                0
+            };
+            boundary.push((u, w, nb, j, mesh.edge_ref[c][e]));
+        }
+    }
+    // A disc without interior vertices: k triangles, k + 2 boundary edges, distinct starts.
+    if boundary.len() != cavity.len() + 2 {
+        return None;
+    }
+    for x in 0..boundary.len() {
+        for y in x + 1..boundary.len() {
+            if boundary[x].0 == boundary[y].0 {
+                return None;
+            }
+        }
+    }
+    // Quality: the star must not be worse than the cavity beyond the floor.
+    let q_old = cavity
+        .iter()
+        .map(|&c| ctx.q(mesh.tris[c as usize]))
+        .fold(1.0, f64::max);
+    let mut q_new: f64 = 1.0;
+    for &(u, w, ..) in &boundary {
+        let pts = [p, mesh.points[u as usize], mesh.points[w as usize]];
+        let ms = [&m, ctx.m(u), ctx.m(w)];
+        q_new = q_new.max(super::kernel::q_ani_mean(pts, ms));
+    }
+    if !(q_new <= ctx.params.q_max || q_new <= q_old) {
+        return None;
+    }
+    Some(InsertPlan {
+        p,
+        m,
+        s: split.s,
+        ends: [a, b],
+        cavity,
+        boundary,
+    })
+}
+
+/// Applies an insertion: the cavity slots are reused for the star and two triangles appended.
+/// Returns the new vertex.
+pub fn apply(ctx: &mut Ctx, plan: &InsertPlan) -> u32 {
+    let [a, b] = plan.ends;
+    // Fields at the new vertex: from the source, else interpolated along the edge.
+    let filled = ctx
+        .source
+        .is_some_and(|s| s.fields_at(plan.p, &mut ctx.scratch_f));
+    if !filled {
+        for (k, f) in ctx.fields.iter().enumerate() {
+            ctx.scratch_f[k] = (1.0 - plan.s) * f[a as usize] + plan.s * f[b as usize];
+        }
+    }
+    let v = ctx.push_vertex(plan.p, plan.m, 0);
+    let tref = ctx.mesh.tri_ref[plan.cavity[0] as usize];
+    let mut slots: Vec<u32> = plan.cavity.clone();
+    while slots.len() < plan.boundary.len() {
+        let t = ctx.push_tri([v, v, v], tref);
+        slots.push(t);
+    }
+    for (k, &(u, w, nb, j, r)) in plan.boundary.iter().enumerate() {
+        let t = slots[k];
+        let tu = t as usize;
+        ctx.mesh.tris[tu] = [v, u, w];
+        ctx.mesh.tri_ref[tu] = tref;
+        ctx.mesh.edge_ref[tu] = [r, 0, 0];
+        ctx.mesh.neighbours[tu] = [NONE; 3];
+        ctx.tstamp[tu] = ctx.gen;
+        ctx.link(t, 0, nb, j as usize);
+        ctx.mesh.vert_tri[u as usize] = t;
+    }
+    // Star adjacency: (v, u, w) meets the triangle starting at w across edge (w, v), local 1,
+    // whose local 2 is edge (v, w).
+    for k in 0..plan.boundary.len() {
+        let w = plan.boundary[k].1;
+        if let Some(k2) = plan.boundary.iter().position(|e| e.0 == w) {
+            ctx.link(slots[k], 1, slots[k2], 2);
+        }
+    }
+    ctx.mesh.vert_tri[v as usize] = slots[0];
+    v
+}
