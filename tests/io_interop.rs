@@ -106,6 +106,41 @@ fn mmg2d_reads_our_files_and_we_read_its_output() {
         r.n_tris()
     );
 
+    // Component order: a constant metric with h = 0.02 along x and 0.2 along y, written as
+    // `xx xy yy` = `2500 0 25`; MMG's edges must have unit length in that metric (swapped
+    // components would make them 10 times too long or too short).
+    let aniso = Sym2::new(2500.0, 0.0, 25.0);
+    let (s2, b2) = (d.join("aniso.sol"), d.join("aniso_out.mesh"));
+    io::write_sol(&s2, &Sol::metric(vec![aniso; m.n_points()])).unwrap();
+    run(Command::new("mmg2d_O3")
+        .arg("-in")
+        .arg(&a)
+        .arg("-sol")
+        .arg(&s2)
+        .arg("-out")
+        .arg(&b2)
+        .args(["-v", "-1"]));
+    let r = io::read_mesh(&b2).unwrap();
+    let lens: Vec<f64> = r
+        .edges()
+        .iter()
+        .map(|&([p, q], _, _)| {
+            aniso
+                .quad(r.points[p as usize] - r.points[q as usize])
+                .sqrt()
+        })
+        .collect();
+    let mean = lens.iter().sum::<f64>() / lens.len() as f64;
+    let unit = lens.iter().filter(|&&l| (0.6..1.5).contains(&l)).count() as f64 / lens.len() as f64;
+    assert!(
+        (0.7..1.4).contains(&mean) && unit > 0.8,
+        "mean metric length {mean}, unit fraction {unit}"
+    );
+    println!(
+        "mmg2d_O3 with diag(2500, 25): mean metric edge length {mean:.3}, {:.0}% in [0.6, 1.5]",
+        100.0 * unit
+    );
+
     // Level-set discretisation (-ls): MMG splits the mesh along the zero level of our scalar
     // field; we read back two sub-domains (MMG refs 2 inside, 3 outside) and interface edges.
     let phi: Vec<f64> = m
@@ -261,5 +296,109 @@ gmsh.finalize()\n",
         m.n_points(),
         m.n_tris(),
         m.area()
+    );
+}
+
+#[test]
+fn freefem_reads_our_mesh_and_we_read_its_output() {
+    if !on_path("FreeFem++") {
+        println!("SKIPPED: FreeFem++ is not on PATH");
+        return;
+    }
+    let d = scratch();
+    let m = io::read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/square_hole.mesh"))
+        .unwrap();
+    io::write_mesh(&d.join("ours.mesh"), &m).unwrap();
+    let script = "cout.precision(17);\nmesh Th = readmesh(\"ours.mesh\");\n\
+cout << \"OURS \" << Th.nv << \" \" << Th.nt << \" \" << Th.nbe << \" \" << Th.measure << endl;\n\
+int[int] lab = labels(Th);\n\
+cout << \"LABELS \" << lab.n << \" \" << lab.min << \" \" << lab.max << endl;\n\
+mesh Th2 = square(5, 4, [2*x, y]);\n\
+Th2 = adaptmesh(Th2, 1./(0.05*0.05), 0, 1./(0.2*0.2), IsMetric=1, nbvx=100000);\n\
+savemesh(Th2, \"theirs.mesh\");\n";
+    std::fs::write(d.join("t.edp"), script).unwrap();
+    let out = run(Command::new("FreeFem++")
+        .current_dir(&d)
+        .args(["-nw", "-v", "0", "t.edp"]));
+    let ours = out.lines().find(|l| l.starts_with("OURS ")).expect(&out);
+    let v: Vec<f64> = ours[5..]
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    assert_eq!(v[0] as usize, m.n_points(), "{out}");
+    assert_eq!(v[1] as usize, m.n_tris(), "{out}");
+    assert_eq!(v[2] as usize, m.boundary_edges().len(), "{out}");
+    assert!((v[3] - m.area()).abs() < 1e-9, "{out}");
+    assert!(out.contains("LABELS 2 1 5"), "{out}");
+    let r = io::read_mesh(&d.join("theirs.mesh")).unwrap();
+    r.check().unwrap();
+    assert!((r.area() - 2.0).abs() < 1e-12);
+    assert_eq!(labels(&r), vec![1, 2, 3, 4]);
+    println!(
+        "FreeFem++ read our {} vertices / {} triangles; we read its adapted mesh ({} vertices)",
+        m.n_points(),
+        m.n_tris(),
+        r.n_points()
+    );
+}
+
+#[test]
+fn mmg3d_reads_our_cube_and_3d_tensor_order() {
+    if !on_path("mmg3d_O3") {
+        println!("SKIPPED: mmg3d_O3 is not on PATH (pip install mmgpy)");
+        return;
+    }
+    let d = scratch();
+    let cube =
+        io::read_medit3(&Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/cube.mesh")).unwrap();
+    let (a, s, b) = (
+        d.join("cube.mesh"),
+        d.join("cube.sol"),
+        d.join("cube_out.mesh"),
+    );
+    io::write_medit3(&a, &cube).unwrap();
+    // h = 0.2, 0.1, 0.4 along x, y, z; file order xx xy yy xz yz zz (MMG's internal order
+    // xx xy xz yy yz zz would make this tensor indefinite).
+    let m = [25.0, 0.0, 100.0, 0.0, 0.0, 6.25];
+    io::write_sol(
+        &s,
+        &Sol {
+            dim: 3,
+            fields: vec![SolField::Tensor3(vec![m; cube.points.len()])],
+        },
+    )
+    .unwrap();
+    run(Command::new("mmg3d_O3")
+        .arg("-in")
+        .arg(&a)
+        .arg("-sol")
+        .arg(&s)
+        .arg("-out")
+        .arg(&b)
+        .args(["-v", "-1"]));
+    let r = io::read_medit3(&b).unwrap();
+    let mut lens = Vec::new();
+    for t in &r.tets {
+        for i in 0..4 {
+            for j in i + 1..4 {
+                let e = r.points[t[i] as usize] - r.points[t[j] as usize];
+                lens.push((25.0 * e.x * e.x + 100.0 * e.y * e.y + 6.25 * e.z * e.z).sqrt());
+            }
+        }
+    }
+    let mean = lens.iter().sum::<f64>() / lens.len() as f64;
+    assert!((0.7..1.4).contains(&mean), "mean metric edge length {mean}");
+    let vol: f64 = r
+        .tets
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| r.points[v as usize]);
+            (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]).abs() / 6.0
+        })
+        .sum();
+    assert!((vol - 1.0).abs() < 1e-9, "volume {vol}");
+    println!(
+        "mmg3d_O3 read our cube + 3D tensor: {} tets, mean metric edge length {mean:.3}",
+        r.tets.len()
     );
 }

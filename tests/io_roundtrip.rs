@@ -330,3 +330,18 @@ fn cdt_sample_domain_round_trips_through_gmsh() {
     assert_eq!(r.tri_ref, m.tri_ref);
     assert_eq!(r.edge_ref, m.edge_ref);
 }
+
+#[test]
+fn freefem_style_header_is_read() {
+    // FreeFem++/BAMG: version 0, quoted Identifier and Geometry strings (which may contain
+    // keyword-like words), geometric sections after the elements.
+    let text = "MeshVersionFormatted 0\n\nDimension\n2\n\nIdentifier\n\"Vertices Triangles 3\"\n\n\
+Geometry\n\"x.gmsh\"\n\nVertices\n4\n0 0 1\n1 0 2\n1 1 3\n0 1 4\n\nEdges\n1\n1 2 1\n\n\
+Triangles\n2\n1 2 3 0\n1 3 4 0\n\nSubDomainFromMesh\n1\n3 1 1 0\n\nVertexOnGeometricVertex\n1\n1 1\n\nEnd\n";
+    let p = scratch("ff.mesh");
+    std::fs::write(&p, text).unwrap();
+    let m = io::read_mesh(&p).unwrap();
+    assert_eq!((m.n_points(), m.n_tris()), (4, 2));
+    assert_eq!(m.vert_ref, vec![1, 2, 3, 4]);
+    assert!((m.area() - 1.0).abs() < 1e-15);
+}

@@ -350,6 +350,7 @@ impl Entity {
 
 /// Writes a 2D mesh as Gmsh 4.1 ASCII (atomically) with the given physical names.
 pub fn write_msh_named(path: &Path, mesh: &Mesh2, names: &[PhysicalName]) -> Result<()> {
+    super::check_lengths(mesh)?;
     let np = mesh.points.len();
     // Point entities: one per corner.
     let corners: Vec<usize> = (0..np).filter(|&v| mesh.corner[v]).collect();
@@ -391,8 +392,11 @@ pub fn write_msh_named(path: &Path, mesh: &Mesh2, names: &[PhysicalName]) -> Res
     // Node classification: (dim, entity index).
     let mut class: Vec<(u8, usize)> = vec![(2, 0); np];
     for (c, &t) in class.iter_mut().zip(&mesh.vert_tri) {
-        if t != NONE {
-            *c = (2, surf_of[&mesh.tri_ref[t as usize]]);
+        if let Some(&s) = (t != NONE)
+            .then(|| surf_of.get(&mesh.tri_ref[t as usize]))
+            .flatten()
+        {
+            *c = (2, s);
         }
     }
     for &(c, [a, b]) in &lines {

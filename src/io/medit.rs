@@ -5,7 +5,8 @@
 //! `Mesh2::edge_ref` of the triangle edges), `Corners`, `RequiredVertices`, `End`. Dimension 3:
 //! `Vertices`, `Tetrahedra`, `Triangles` into [`Medit3`]. Indices in files are 1-based. Keywords
 //! are case-insensitive, numbers may be split across lines, `#` starts a comment, and unknown
-//! sections (`Normals`, `Ridges`, `RequiredEdges`, ...) are skipped.
+//! sections (`Normals`, `Ridges`, `RequiredEdges`, FreeFem++'s `Identifier "..."`,
+//! `VertexOnGeometricEdge`, ...) are skipped.
 
 use super::atomic::atomic_write;
 use super::tokens::{fmt_f64, read_text, shorten, Tokens};
@@ -72,9 +73,10 @@ fn vertex_index(tk: &mut Tokens, what: &str) -> Result<u32> {
 pub(crate) fn read_header_keyword(tk: &mut Tokens, kw: &str) -> Result<Option<usize>> {
     if kw.eq_ignore_ascii_case("MeshVersionFormatted") {
         let v: i64 = tk.int("MeshVersionFormatted")?;
-        if !(1..=4).contains(&v) {
+        // 0 is written by FreeFem++'s BAMG writers.
+        if !(0..=4).contains(&v) {
             return Err(tk.err(format!(
-                "unsupported MeshVersionFormatted {v} (expected 1 to 4)"
+                "unsupported MeshVersionFormatted {v} (expected 0 to 4)"
             )));
         }
         return Ok(Some(0));
@@ -89,8 +91,12 @@ pub(crate) fn read_header_keyword(tk: &mut Tokens, kw: &str) -> Result<Option<us
     Ok(None)
 }
 
-/// Skips the data of an unknown section: every token up to the next keyword.
+/// Skips the data of an unknown section: every token up to the next keyword. A leading quoted
+/// string (FreeFem++'s `Identifier "..."`, `Geometry "..."`) is skipped as a whole.
 pub(crate) fn skip_section(tk: &mut Tokens) {
+    if tk.peek().is_some_and(|t| t.starts_with('"')) {
+        let _ = tk.quoted("quoted string");
+    }
     while let Some(t) = tk.peek() {
         if is_keyword(t) {
             break;
@@ -376,6 +382,7 @@ pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
 
 /// Writes a 2D mesh as Medit `.mesh` (atomically).
 pub fn write_medit2(path: &Path, mesh: &Mesh2) -> Result<()> {
+    super::check_lengths(mesh)?;
     atomic_write(path, |w| write_medit2_to(w, mesh))
 }
 

@@ -50,7 +50,7 @@ pub fn read_mesh(path: &Path) -> Result<Mesh2> {
 }
 
 /// Array-length consistency of a mesh about to be written (writers index these arrays).
-fn check_lengths(mesh: &Mesh2) -> Result<()> {
+pub(crate) fn check_lengths(mesh: &Mesh2) -> Result<()> {
     let nt = mesh.tris.len();
     let np = mesh.points.len();
     if mesh.neighbours.len() != nt || mesh.tri_ref.len() != nt || mesh.edge_ref.len() != nt {
@@ -71,6 +71,17 @@ fn check_lengths(mesh: &Mesh2) -> Result<()> {
         }
         .into());
     }
+    if let Some(v) = mesh
+        .vert_tri
+        .iter()
+        .position(|&s| s != crate::mesh::NONE && s as usize >= nt)
+    {
+        return Err(MeshDefect::BadVertexData {
+            vertex: v,
+            detail: "the seed triangle is out of range",
+        }
+        .into());
+    }
     for t in mesh.live_tris() {
         if mesh.tris[t].iter().any(|&v| v as usize >= np) {
             return Err(MeshDefect::IndexOutOfRange {
@@ -87,7 +98,6 @@ fn check_lengths(mesh: &Mesh2) -> Result<()> {
 /// Writes a 2D mesh, choosing the format by extension: `.mesh`, `.msh` or `.vtu` (mesh and
 /// `tri_ref` only; use [`write_vtu`] for fields). Tombstoned triangles are skipped.
 pub fn write_mesh(path: &Path, mesh: &Mesh2) -> Result<()> {
-    check_lengths(mesh)?;
     match extension(path).as_str() {
         "mesh" => write_medit2(path, mesh),
         "msh" => write_msh(path, mesh),

@@ -74,6 +74,7 @@ pub fn write_vtu(
     point_fields: &[(&str, FieldRef)],
     cell_fields: &[(&str, &[f64])],
 ) -> Result<()> {
+    super::check_lengths(mesh)?;
     let np = mesh.points.len();
     let live: Vec<usize> = mesh.live_tris().collect();
     for (name, f) in point_fields {
