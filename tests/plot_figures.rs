@@ -69,11 +69,7 @@ fn zalesak_plot(n: usize) -> (Mesh2, MeshPlot) {
         colour_label: "element size h".into(),
         polylines: lines
             .iter()
-            .map(|l| {
-                let mut p = l.points.clone();
-                p.push(p[0]);
-                (p, RGBColor(230, 30, 30), 2)
-            })
+            .map(|l| (l.path_points(), RGBColor(230, 30, 30), 2))
             .collect(),
         insets: vec![Inset {
             view: (DVec2::new(-0.12, 0.78), DVec2::new(0.12, 0.92)),

@@ -37,6 +37,16 @@ impl Polyline {
         (0..m).map(move |i| (self.points[i], self.points[(i + 1) % n]))
     }
 
+    /// The points as an open path: a closed polyline repeats its first point at the end (ready
+    /// for drawing, e.g. as a `plot::MeshPlot` overlay).
+    pub fn path_points(&self) -> Vec<DVec2> {
+        let mut p = self.points.clone();
+        if self.closed && !p.is_empty() {
+            p.push(p[0]);
+        }
+        p
+    }
+
     /// Length of the polyline.
     pub fn length(&self) -> f64 {
         self.segments().map(|(a, b)| (b - a).length()).sum()
@@ -247,7 +257,8 @@ pub struct InterfaceError {
 /// discrete segment (both ends included) measured with the shape's distance, and
 /// `max(512, segments × samples_per_segment)` exact boundary samples measured against an R-tree
 /// of the discrete segments. Exact for the shape's distance where that is exact (circle,
-/// Zalesak); an estimate of the Hausdorff distance up to the sampling density.
+/// Zalesak); an estimate of the Hausdorff distance up to the sampling density. With no polyline
+/// points every field is infinite.
 pub fn interface_distance(
     polylines: &[Polyline],
     shape: &dyn Shape,

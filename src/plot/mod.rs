@@ -16,6 +16,8 @@ pub use charts::{
     SeriesStyle,
 };
 pub use mesh::{mesh_png, mesh_rgb, Corner, Inset, MeshPlot};
+/// The colour type of overlay curves (plotters' 8-bit RGB).
+pub use plotters::style::RGBColor;
 
 use crate::error::{Error, Result};
 use plotters::prelude::*;
