@@ -9,8 +9,8 @@ use anisomesh::bench::zalesak::{run, ZalesakMesh, ZalesakOptions};
 
 fn main() -> anisomesh::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let eps: f64 = args.first().and_then(|s| s.parse().ok()).unwrap_or(1e-4);
-    let fp: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(2);
+    let eps: f64 = args.first().and_then(|s| s.parse().ok()).unwrap_or(1.2e-3);
+    let fp: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(5);
     let nodal = args.iter().any(|a| a == "nodal");
     let iso = args.iter().any(|a| a == "iso");
     let grade: f64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1.0);

@@ -151,7 +151,8 @@ fn fixed_point_on_a_fixed_mesh_is_one_advection() {
         .map(|&p| (p - DVec2::new(0.4, 0.0)).length() - 0.3)
         .collect();
     let v = anisomesh::advect::Rotation { omega: 1.0 };
-    let opts = FixedPointOptions::default();
+    let mut opts = FixedPointOptions::default();
+    opts.advect.form = Form::Nodal;
     let r = advance_period(&m, &u, &v, 0.0, 0.4, &mut IdentityAdapter, &opts).unwrap();
     let direct = advect(&m, &u, &m, &v, 0.0, 0.4, &opts.advect).unwrap();
     assert_eq!(r.iterations, 1);

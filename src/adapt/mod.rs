@@ -27,8 +27,12 @@ pub mod smooth;
 pub mod split;
 
 mod driver;
+mod report;
+mod shape;
 pub mod sources;
 
-pub use driver::{adapt, AdaptOptions, AdaptReport, PassKind, PassReport};
+pub use driver::{adapt, validate_inputs, AdaptOptions, AdaptReport, PassKind, PassReport};
+pub use report::{mesh_report, MeshReport};
+pub use shape::{adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
 pub use topo::{Ctx, OpParams, VClass};
