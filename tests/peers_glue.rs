@@ -117,6 +117,10 @@ fn peer_output_lines_parse() {
     assert_eq!(parse_mmg_elapsed(mmg), Some(12.5));
     assert_eq!(parse_mmg_elapsed("nothing"), None);
     assert_eq!(
+        parse_mmg_elapsed("   ELAPSED TIME  25m21s (1521.280s)\n"),
+        Some(1521.28)
+    );
+    assert_eq!(
         parse_bamg_seconds("x\nBAMG_SECONDS 0.25\nBAMG_VERTICES 9"),
         Some(0.25)
     );

@@ -406,13 +406,18 @@ pub fn run_with_timeout(
     })
 }
 
-/// MMG's self-reported time: the number in its last `ELAPSED TIME  1.234s` line.
+/// MMG's self-reported time in seconds, from its last `ELAPSED TIME  1.234s` line (runs over a
+/// minute print `ELAPSED TIME  25m21s (1521.280s)`: the number in parentheses).
 pub fn parse_mmg_elapsed(stdout: &str) -> Option<f64> {
-    stdout
+    let rest = stdout
         .lines()
         .rev()
-        .find_map(|l| l.trim().strip_prefix("ELAPSED TIME"))
-        .and_then(|s| s.trim().trim_end_matches('s').trim().parse().ok())
+        .find_map(|l| l.trim().strip_prefix("ELAPSED TIME"))?;
+    let secs = match (rest.find('('), rest.find(')')) {
+        (Some(a), Some(b)) if a < b => &rest[a + 1..b],
+        _ => rest,
+    };
+    secs.trim().trim_end_matches('s').trim().parse().ok()
 }
 
 /// The BAMG driver's `BAMG_SECONDS t` line.
