@@ -83,7 +83,8 @@ fn bench_writes_the_json_shape() {
         ..ReinitOptions::default()
     };
     let rep = run(&opts).unwrap();
-    assert_eq!(rep.tables.len(), 1);
+    assert_eq!(rep.tables.len(), 2);
+    assert!(dir.join("reinit_circle_einf.png").exists());
     let text = std::fs::read_to_string(dir.join("reinit.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let t = &v["tables"][0];

@@ -38,8 +38,9 @@ impl MetricSource for NoSource {
 /// ([`metric::MetricBounds`]). Outside the band the sizes of the band metric grow linearly with
 /// the distance, `h ← min(hmax, h + grade (|u| - band))` (an analytic gradation that keeps the
 /// field continuous and can be re-evaluated anywhere; `grade = inf` gives the plain "hmax
-/// outside the band" rule). `isotropic` replaces the metric by `λ_max I` (the smallest size in
-/// every direction), the isotropic reference.
+/// outside the band" rule). `isotropic` replaces the metric by `λ_max I` (the smallest size of
+/// eq. (6) in every direction: the isotropic mesh with the same resolution across the
+/// interface, the reference of the "anisotropy pays" comparison).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct LevelSetMetric {
     /// Interface error bound ε of eq. (6).
@@ -64,8 +65,8 @@ impl Default for LevelSetMetric {
             hmin: 1e-3,
             hmax: 0.2,
             max_aniso: 1e4,
-            band: 4e-3,
-            grade: 0.3,
+            band: 5e-4,
+            grade: 1.0,
             analytic: true,
             isotropic: false,
         }
@@ -99,6 +100,11 @@ impl LevelSetMetric {
     pub fn metric(&self, u: f64, grad: DVec2, hess: &Sym2) -> Sym2 {
         let b = self.bounds();
         let mut m = b.apply(&geometric_metric(grad, hess, self.hmin, self.eps));
+        if self.isotropic {
+            // The smallest size of eq. (6) in every direction.
+            let (l, _) = m.eigen();
+            m = Sym2::scalar(l[1]);
+        }
         let d = u.abs() - self.band;
         if d > 0.0 {
             if !self.grade.is_finite() {
@@ -111,10 +117,6 @@ impl LevelSetMetric {
                 };
                 m = Sym2::from_eigen([grow(l[0]), grow(l[1])], v);
             }
-        }
-        if self.isotropic {
-            let (l, _) = m.eigen();
-            m = Sym2::scalar(l[1]);
         }
         m
     }

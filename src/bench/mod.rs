@@ -2,5 +2,6 @@
 
 pub mod convergence;
 pub mod couette;
+pub mod peers;
 pub mod reinit;
 pub mod zalesak;

@@ -8,6 +8,9 @@
 //!   (tables 8.1 `α = 1`, 8.2 `α = 10`, 8.3 `α = 50`).
 //! - The 2D analogue: a circle of radius 0.5 (centre (0.03, -0.02)) in `[-1, 1]²` on uniform
 //!   union-jack grids with `h_ℓ = 2^{-ℓ} (2/3)`, same `q^{(α)}`.
+//! - The Zalesak slotted disk of 004 (exact signed distance from [`crate::levelset::shapes`]) in
+//!   `[-2, 2]²` with the same `h_ℓ` and `q^{(α)}`: its corners break the smoothness the analysis
+//!   of 003 §7 assumes, so this table shows what happens there (max errors sit at the corners).
 //! - Repeated redistancing of a sphere of radius 0.25 (Fig. 8.4): `d̃^0_h = I_h d^{ex}`, then 100
 //!   redistancings (initialisation + fast marching extension); relative volume error
 //!   `|V^n - 4/3 π r³| / (4/3 π r³)`. The volume inside the zero level is exact for P1 (per
@@ -212,6 +215,33 @@ pub fn circle_case(level: u32, k: usize, alpha: f64) -> Result<CaseResult> {
         .map(|(i, &p)| (out.values[i] - d(p)).abs())
         .fold(0.0, f64::max);
     Ok((2.0 / n as f64, e_inf, out.report.e_grad, out.report))
+}
+
+/// The Zalesak disk of 004 on a uniform grid of `[-2, 2]²` with `h_ℓ = 2^{-ℓ} h_0`.
+pub fn zalesak_case(level: u32, k: usize, alpha: f64) -> Result<CaseResult> {
+    use crate::levelset::shapes::{Shape, Zalesak};
+    let z = Zalesak::default();
+    let n = 6usize << level;
+    let m = Mesh2::rectangle(
+        DVec2::splat(-2.0),
+        DVec2::splat(2.0),
+        n,
+        n,
+        GridPattern::UnionJack,
+    )?;
+    let x = nodes2(&m, k);
+    let phi: Vec<f64> = x
+        .iter()
+        .map(|&p| z.distance(p) * q_alpha(alpha, p.x, p.y, p.length()))
+        .collect();
+    let out = redistance_ppr(&m, &phi, &table_opts(k))?;
+    let e_inf = x
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| out.band[*i])
+        .map(|(i, &p)| (out.values[i] - z.distance(p)).abs())
+        .fold(0.0, f64::max);
+    Ok((4.0 / n as f64, e_inf, out.report.e_grad, out.report))
 }
 
 /// Fraction of a simplex where the linear function with vertex values `u` is negative: the
@@ -482,27 +512,30 @@ fn print_table(t: &Table) {
 /// values, and write `reinit.json` when `out_dir` is set.
 pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
     let mut tables = Vec::new();
-    let cases: Vec<(usize, u32, usize)> = [(2usize, &opts.levels_2d), (3, &opts.levels_3d)]
+    let sets = [
+        ("circle", 2usize, &opts.levels_2d),
+        ("zalesak", 2, &opts.levels_2d),
+        ("torus", 3, &opts.levels_3d),
+    ];
+    let cases: Vec<(&str, usize, u32, usize)> = sets
         .iter()
-        .filter(|(_, l)| !l.is_empty())
-        .flat_map(|&(dim, _)| {
+        .filter(|(_, _, l)| !l.is_empty())
+        .flat_map(|&(name, dim, _)| {
             opts.alphas
                 .iter()
-                .flat_map(move |&a| opts.degrees.iter().map(move |&k| (dim, a, k)))
+                .flat_map(move |&a| opts.degrees.iter().map(move |&k| (name, dim, a, k)))
         })
         .collect();
-    let total: usize = cases
-        .iter()
-        .map(|&(dim, _, _)| {
-            if dim == 2 {
-                opts.levels_2d.len()
-            } else {
-                opts.levels_3d.len()
-            }
-        })
-        .sum();
+    let n_levels = |dim: usize| {
+        if dim == 2 {
+            opts.levels_2d.len()
+        } else {
+            opts.levels_3d.len()
+        }
+    };
+    let total: usize = cases.iter().map(|c| n_levels(c.1)).sum();
     let bar = progress(total as u64, "tables");
-    for (dim, alpha, k) in cases {
+    for (name, dim, alpha, k) in cases {
         let levels = if dim == 2 {
             &opts.levels_2d
         } else {
@@ -510,10 +543,11 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
         };
         let mut rows = Vec::new();
         for &l in levels {
-            let (h, e_inf, e_grad, report) = if dim == 2 {
-                circle_case(l, k, f64::from(alpha))?
-            } else {
-                torus_case(l, k, f64::from(alpha))?
+            let a = f64::from(alpha);
+            let (h, e_inf, e_grad, report) = match name {
+                "circle" => circle_case(l, k, a)?,
+                "zalesak" => zalesak_case(l, k, a)?,
+                _ => torus_case(l, k, a)?,
             };
             rows.push(Row {
                 level: l,
@@ -527,11 +561,7 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
             bar.inc(1);
         }
         let t = Table {
-            name: if dim == 2 {
-                "circle".into()
-            } else {
-                "torus".into()
-            },
+            name: name.into(),
             dim,
             k,
             alpha,
@@ -574,8 +604,71 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
     };
     if let Some(dir) = &opts.out_dir {
         write_json(dir, &report)?;
+        write_plots(dir, &report)?;
     }
     Ok(report)
+}
+
+/// `reinit_<name>_einf.png`, `reinit_<name>_egrad.png` (log-log against `h`, fitted slopes) and
+/// `reinit_volume.png` (relative volume error against the number of redistancings).
+fn write_plots(dir: &std::path::Path, report: &ReinitReport) -> Result<()> {
+    use crate::plot::{lines_png, loglog_png, LinesPlot, LogLogPlot, Series};
+    let mut names: Vec<&str> = report.tables.iter().map(|t| t.name.as_str()).collect();
+    names.dedup();
+    for name in names {
+        for (what, label) in [("einf", "e_inf"), ("egrad", "e_grad")] {
+            let series = report
+                .tables
+                .iter()
+                .filter(|t| t.name == name && t.rows.len() > 1)
+                .map(|t| Series {
+                    name: format!("k={} alpha={}", t.k, t.alpha),
+                    points: t
+                        .rows
+                        .iter()
+                        .map(|r| (r.h, if what == "einf" { r.e_inf } else { r.e_grad }))
+                        .collect(),
+                    show_fit_slope: true,
+                    ..Series::default()
+                })
+                .collect::<Vec<_>>();
+            if series.is_empty() {
+                continue;
+            }
+            let plot = LogLogPlot {
+                title: format!("{name}: {label} (003 §8)"),
+                x_label: "h".into(),
+                y_label: label.into(),
+                series,
+                ..LogLogPlot::default()
+            };
+            loglog_png(&dir.join(format!("reinit_{name}_{what}.png")), &plot)?;
+        }
+    }
+    if !report.volume_drift.is_empty() {
+        let plot = LinesPlot {
+            title: "sphere r = 0.25: relative volume error (003 Fig. 8.4)".into(),
+            x_label: "redistancings".into(),
+            y_label: "e_Vol".into(),
+            series: report
+                .volume_drift
+                .iter()
+                .map(|d| Series {
+                    name: format!("k={} level {}", d.k, d.level),
+                    points: d
+                        .rel_error
+                        .iter()
+                        .enumerate()
+                        .map(|(n, &e)| (n as f64, e))
+                        .collect(),
+                    ..Series::default()
+                })
+                .collect(),
+            ..LinesPlot::default()
+        };
+        lines_png(&dir.join("reinit_volume.png"), &plot)?;
+    }
+    Ok(())
 }
 
 /// Write `dir/reinit.json` atomically (temporary file, then rename).

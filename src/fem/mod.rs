@@ -4,6 +4,7 @@
 //! - [`csr`]: the square sparse matrix [`Csr`] built from element-to-dof maps.
 //! - [`assembly`]: deterministic parallel element assembly.
 //! - [`p1`]: P1 mass, lumped mass, stiffness (scalar or tensor coefficient), load, errors.
+//! - [`p1_bubble`]: the MINI element (P1-bubble / P1) with the bubble condensed.
 //! - [`dirichlet`]: symmetric Dirichlet elimination.
 //! - [`solve`]: PCG (Jacobi, IC(0)) and sparse direct solves (faer Cholesky and LU).
 
@@ -12,6 +13,7 @@ pub mod csr;
 pub mod dirichlet;
 pub mod lagrange;
 pub mod p1;
+pub mod p1_bubble;
 pub mod quadrature;
 pub mod solve;
 

@@ -1,0 +1,698 @@
+//! Two-phase Stokes flow with the MINI element (004 §5.1, eqs. (7)–(9)):
+//! `-div(2 μ ε(u)) + ∇p = f`, `div u = 0` on the mesh, with a viscosity that jumps across the
+//! zero level of a level set, Dirichlet data on some boundary labels, natural (traction)
+//! conditions `σ n = s_N` on others, and an optional surface-tension force on the interface.
+//!
+//! After static condensation of the bubbles ([`MiniElement`]) the discrete system is
+//! `[[A, Bᵀ], [B, -C]] (u, p) = (F, G)` with global dofs `ux = v`, `uy = n_v + v`,
+//! `p = 2 n_v + v`. Two solvers:
+//! - [`StokesSolver::Uzawa`]: CG on the pressure Schur complement `S = B A⁻¹ Bᵀ + C` (Uzawa's
+//!   method accelerated by CG, 004 §5.1), with `A` factorised once by sparse Cholesky and `S`
+//!   preconditioned by the viscosity-weighted pressure mass matrix `∫ μ⁻¹ q r` (also Cholesky),
+//!   which makes the iteration count independent of `h` and of the viscosity ratio.
+//! - [`StokesSolver::Direct`]: sparse LU of the whole saddle-point matrix, the reference.
+//!
+//! When every boundary edge is Dirichlet the pressure is defined up to a constant: the Uzawa
+//! iteration is kept orthogonal to constants and the direct solve adds the constraint `∫ p = 0`
+//! with a Lagrange multiplier; in both cases the returned pressure has zero mean.
+
+use crate::error::{Error, Result};
+use crate::fem::assembly::{assemble_matrix, assemble_vector};
+use crate::fem::csr::{dot, norm, Csr};
+use crate::fem::dirichlet::apply_dirichlet;
+use crate::fem::p1::{bary_point, check_areas, live_elements, P1Geom};
+use crate::fem::p1_bubble::{mini_velocity, MiniElement};
+use crate::fem::quadrature::tri_rule;
+use crate::fem::solve::{pcg, CgOptions, Cholesky, Lu};
+use crate::geom::DVec2;
+use crate::mesh::{Mesh2, NONE};
+use std::time::Instant;
+
+/// A vector field `x -> v(x)` usable from several threads.
+pub type VecField<'a> = &'a (dyn Fn(DVec2) -> DVec2 + Sync);
+
+/// How the viscosity is given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Viscosity {
+    /// The same viscosity everywhere.
+    Constant(f64),
+    /// One value per triangle slot.
+    PerElement(Vec<f64>),
+    /// Two phases separated by the zero level of the P1 level set `phi` (negative inside,
+    /// 004 §2.1): `μ = mu_in + (mu_out - mu_in) H(φ)` at each quadrature point, with `H` the sign
+    /// step (`width = 0`) or the smoothed Heaviside of half-width `width`:
+    /// `H(φ) = (1 + φ/ε + sin(π φ/ε)/π) / 2` for `|φ| < ε`.
+    TwoPhase {
+        phi: Vec<f64>,
+        mu_in: f64,
+        mu_out: f64,
+        width: f64,
+    },
+}
+
+impl Viscosity {
+    /// The viscosity at barycentric point `l` of triangle slot `t`.
+    fn at(&self, mesh: &Mesh2, t: usize, l: &[f64; 3]) -> f64 {
+        match self {
+            Viscosity::Constant(m) => *m,
+            Viscosity::PerElement(m) => m[t],
+            Viscosity::TwoPhase {
+                phi,
+                mu_in,
+                mu_out,
+                width,
+            } => {
+                let v = mesh.tris[t].map(|i| phi[i as usize]);
+                let f = l[0] * v[0] + l[1] * v[1] + l[2] * v[2];
+                mu_in + (mu_out - mu_in) * heaviside(f, *width)
+            }
+        }
+    }
+
+    fn validate(&self, mesh: &Mesh2) -> Result<()> {
+        let bad = |msg: String| {
+            Err(Error::InvalidField {
+                name: "viscosity".into(),
+                msg,
+            })
+        };
+        match self {
+            Viscosity::Constant(m) if !(m.is_finite() && *m > 0.0) => {
+                bad(format!("constant viscosity {m} must be positive"))
+            }
+            Viscosity::PerElement(m) if m.len() != mesh.n_tris() => bad(format!(
+                "{} values for {} triangle slots",
+                m.len(),
+                mesh.n_tris()
+            )),
+            Viscosity::PerElement(m) => match m.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
+                Some(t) => bad(format!(
+                    "viscosity {} on triangle {t} must be positive",
+                    m[t]
+                )),
+                None => Ok(()),
+            },
+            Viscosity::TwoPhase {
+                phi,
+                mu_in,
+                mu_out,
+                width,
+            } => {
+                if phi.len() != mesh.n_points() {
+                    return bad(format!(
+                        "level set has {} values for {} vertices",
+                        phi.len(),
+                        mesh.n_points()
+                    ));
+                }
+                if phi.iter().any(|v| !v.is_finite()) {
+                    return bad("level set holds NaN or infinite values".into());
+                }
+                if !(*mu_in > 0.0 && *mu_out > 0.0 && mu_in.is_finite() && mu_out.is_finite()) {
+                    return bad(format!("viscosities {mu_in}, {mu_out} must be positive"));
+                }
+                if !(width.is_finite() && *width >= 0.0) {
+                    return bad(format!("smoothing width {width} must be >= 0"));
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Step (`eps = 0`) or smoothed Heaviside of half-width `eps`.
+fn heaviside(f: f64, eps: f64) -> f64 {
+    if eps == 0.0 {
+        return if f < 0.0 { 0.0 } else { 1.0 };
+    }
+    if f <= -eps {
+        0.0
+    } else if f >= eps {
+        1.0
+    } else {
+        let s = f / eps;
+        0.5 * (1.0 + s + (std::f64::consts::PI * s).sin() / std::f64::consts::PI)
+    }
+}
+
+/// Which solver [`StokesProblem::solve`] uses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StokesSolver {
+    /// Schur-complement CG (Uzawa) to relative residual `rtol` on the pressure equation.
+    Uzawa { rtol: f64, max_iter: usize },
+    /// Sparse LU of the full system.
+    Direct,
+}
+
+impl Default for StokesSolver {
+    fn default() -> Self {
+        StokesSolver::Uzawa {
+            rtol: 1e-10,
+            max_iter: 500,
+        }
+    }
+}
+
+/// Statistics of a Stokes solve.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StokesReport {
+    /// Outer (pressure Schur-complement CG) iterations; 0 for the direct solver.
+    pub uzawa_iterations: usize,
+    /// Inner velocity solves `A⁻¹ v` (each one Cholesky forward/backward substitution).
+    pub inner_iterations: usize,
+    /// `‖K x - F‖ / ‖F‖` of the full condensed saddle-point system.
+    pub residual: f64,
+    /// Whether the outer iteration reached its tolerance (always true for the direct solver).
+    pub converged: bool,
+    /// Wall-clock seconds of assembly and solve.
+    pub seconds: f64,
+}
+
+/// A MINI-element Stokes solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StokesSolution {
+    /// P1 part of the velocity (the velocity at the vertices).
+    pub velocity: Vec<DVec2>,
+    /// Bubble coefficient per triangle slot (zero on tombstones).
+    pub bubbles: Vec<DVec2>,
+    /// P1 pressure.
+    pub pressure: Vec<f64>,
+}
+
+impl StokesSolution {
+    /// The (P1 + bubble) velocity at barycentric point `l` of triangle slot `t`.
+    pub fn velocity_at(&self, mesh: &Mesh2, t: usize, l: &[f64; 3]) -> DVec2 {
+        let u = mesh.tris[t].map(|i| self.velocity[i as usize]);
+        mini_velocity(&u, self.bubbles[t], l)
+    }
+}
+
+/// A Stokes problem on a mesh. Build with [`StokesProblem::new`] and the builder methods.
+pub struct StokesProblem<'a> {
+    mesh: &'a Mesh2,
+    viscosity: Viscosity,
+    force: Option<VecField<'a>>,
+    dirichlet: Vec<(i32, VecField<'a>)>,
+    neumann: Vec<(i32, VecField<'a>)>,
+    surface_tension: f64,
+}
+
+impl<'a> StokesProblem<'a> {
+    /// A problem with viscosity 1, no force, and (until set) no boundary conditions: unset
+    /// boundary labels are traction-free (natural).
+    pub fn new(mesh: &'a Mesh2) -> Self {
+        StokesProblem {
+            mesh,
+            viscosity: Viscosity::Constant(1.0),
+            force: None,
+            dirichlet: Vec::new(),
+            neumann: Vec::new(),
+            surface_tension: 0.0,
+        }
+    }
+
+    /// Sets the viscosity.
+    pub fn viscosity(mut self, v: Viscosity) -> Self {
+        self.viscosity = v;
+        self
+    }
+
+    /// Sets the body force `ρ f` of (7).
+    pub fn force(mut self, f: VecField<'a>) -> Self {
+        self.force = Some(f);
+        self
+    }
+
+    /// Prescribes `u = g` on the boundary edges labelled `label` (9).
+    pub fn dirichlet(mut self, label: i32, g: VecField<'a>) -> Self {
+        self.dirichlet.push((label, g));
+        self
+    }
+
+    /// Prescribes the traction `σ n = s` on the boundary edges labelled `label` (9).
+    pub fn neumann(mut self, label: i32, s: VecField<'a>) -> Self {
+        self.neumann.push((label, s));
+        self
+    }
+
+    /// Adds the surface-tension force of coefficient `gamma` on the zero level of the
+    /// [`Viscosity::TwoPhase`] level set (interface condition (8) with `K = γ κ`), in the
+    /// Laplace–Beltrami form `-γ ∫_Γ div_Γ v` on the piecewise linear interface.
+    pub fn surface_tension(mut self, gamma: f64) -> Self {
+        self.surface_tension = gamma;
+        self
+    }
+
+    /// Assembles and solves. Errors on invalid input (bad viscosity, field sizes, degenerate
+    /// triangles) or a failed factorisation; a Uzawa iteration that does not converge is
+    /// reported in [`StokesReport::converged`].
+    pub fn solve(&self, solver: StokesSolver) -> Result<(StokesSolution, StokesReport)> {
+        let start = Instant::now();
+        let mesh = self.mesh;
+        check_areas(mesh)?;
+        self.viscosity.validate(mesh)?;
+        if self.surface_tension != 0.0 && !matches!(self.viscosity, Viscosity::TwoPhase { .. }) {
+            return Err(Error::InvalidInput(
+                "surface tension needs a two-phase viscosity (it is applied on its level set)"
+                    .into(),
+            ));
+        }
+        let nv = mesh.n_points();
+        let n = 3 * nv;
+        let (slots, tris) = live_elements(mesh);
+        let elems: Vec<[u32; 9]> = tris
+            .iter()
+            .map(|v| {
+                let nv = nv as u32;
+                [
+                    v[0],
+                    v[1],
+                    v[2],
+                    nv + v[0],
+                    nv + v[1],
+                    nv + v[2],
+                    2 * nv + v[0],
+                    2 * nv + v[1],
+                    2 * nv + v[2],
+                ]
+            })
+            .collect();
+        let zero = |_: DVec2| DVec2::ZERO;
+        let force: VecField = self.force.unwrap_or(&zero);
+        let element = |e: usize| {
+            let t = slots[e];
+            MiniElement::new(mesh.tri_points(t), |l| self.viscosity.at(mesh, t, l), force)
+        };
+        let mut k = Csr::from_elements(n, &elems)?;
+        assemble_matrix(&mut k, &elems, |e| element(e).k)?;
+        let mut rhs = vec![0.0; n];
+        assemble_vector(&mut rhs, &elems, |e| element(e).f)?;
+        self.add_neumann(&mut rhs)?;
+        if self.surface_tension != 0.0 {
+            self.add_surface_tension(&mut rhs)?;
+        }
+        let (fixed, values, all_dirichlet) = self.dirichlet_data()?;
+        apply_dirichlet(&mut k, &mut rhs, &fixed, &values)?;
+        let (x, mut report) = match solver {
+            StokesSolver::Direct => (
+                solve_direct(&k, &rhs, nv, all_dirichlet)?,
+                StokesReport {
+                    converged: true,
+                    ..Default::default()
+                },
+            ),
+            StokesSolver::Uzawa { rtol, max_iter } => {
+                self.solve_uzawa(&k, &rhs, all_dirichlet, rtol, max_iter)?
+            }
+        };
+        let mut x = x;
+        if all_dirichlet {
+            // Zero-mean pressure: subtract ∫p / |Ω| (∫p = Σ p_i ∫φ_i, ∫φ_i = lumped mass).
+            let mut lm = vec![0.0; nv];
+            assemble_vector(&mut lm, &tris, |e| [mesh.tri_area(slots[e]) / 3.0; 3])?;
+            let mean = dot(&lm, &x[2 * nv..]) / lm.iter().sum::<f64>();
+            x[2 * nv..].iter_mut().for_each(|p| *p -= mean);
+        }
+        let kx = k.mul(&x);
+        let r: Vec<f64> = kx.iter().zip(&rhs).map(|(a, b)| a - b).collect();
+        report.residual = norm(&r) / norm(&rhs).max(f64::MIN_POSITIVE);
+        let mut bubbles = vec![DVec2::ZERO; mesh.n_tris()];
+        for (e, dofs) in elems.iter().enumerate() {
+            let xe = dofs.map(|d| x[d as usize]);
+            let b = element(e).bubble(&xe);
+            bubbles[slots[e]] = DVec2::new(b[0], b[1]);
+        }
+        let sol = StokesSolution {
+            velocity: (0..nv).map(|v| DVec2::new(x[v], x[nv + v])).collect(),
+            bubbles,
+            pressure: x[2 * nv..].to_vec(),
+        };
+        report.seconds = start.elapsed().as_secs_f64();
+        Ok((sol, report))
+    }
+
+    /// Dirichlet mask and values on the 3 n_v dofs, and whether every boundary edge is
+    /// Dirichlet (pressure defined up to a constant).
+    fn dirichlet_data(&self) -> Result<(Vec<bool>, Vec<f64>, bool)> {
+        let mesh = self.mesh;
+        let nv = mesh.n_points();
+        let mut fixed = vec![false; 3 * nv];
+        let mut values = vec![0.0; 3 * nv];
+        let mut all = true;
+        for t in mesh.live_tris() {
+            for i in 0..3 {
+                if mesh.neighbours[t][i] != NONE {
+                    continue;
+                }
+                let label = mesh.edge_ref[t][i];
+                let Some((_, g)) = self.dirichlet.iter().find(|(l, _)| *l == label) else {
+                    all = false;
+                    continue;
+                };
+                for v in mesh.edge_vertices(t, i) {
+                    let v = v as usize;
+                    let gv = g(mesh.points[v]);
+                    if !gv.is_finite() {
+                        return Err(Error::InvalidField {
+                            name: "Dirichlet velocity".into(),
+                            msg: format!("non-finite value at vertex {v}"),
+                        });
+                    }
+                    fixed[v] = true;
+                    fixed[nv + v] = true;
+                    values[v] = gv.x;
+                    values[nv + v] = gv.y;
+                }
+            }
+        }
+        Ok((fixed, values, all))
+    }
+
+    /// `∫_{Γ_N} s · v` on labelled boundary edges (2-point Gauss; the bubble vanishes there).
+    fn add_neumann(&self, rhs: &mut [f64]) -> Result<()> {
+        if self.neumann.is_empty() {
+            return Ok(());
+        }
+        let mesh = self.mesh;
+        let nv = mesh.n_points();
+        let g = 0.5 / 3f64.sqrt();
+        for t in mesh.live_tris() {
+            for i in 0..3 {
+                if mesh.neighbours[t][i] != NONE {
+                    continue;
+                }
+                let label = mesh.edge_ref[t][i];
+                if self.dirichlet.iter().any(|(l, _)| *l == label) {
+                    continue;
+                }
+                let Some((_, s)) = self.neumann.iter().find(|(l, _)| *l == label) else {
+                    continue;
+                };
+                let [a, b] = mesh.edge_vertices(t, i);
+                let (pa, pb) = (mesh.points[a as usize], mesh.points[b as usize]);
+                let len = (pb - pa).length();
+                for xi in [0.5 - g, 0.5 + g] {
+                    let sv = s(pa + xi * (pb - pa)) * (0.5 * len);
+                    for (v, phi) in [(a, 1.0 - xi), (b, xi)] {
+                        rhs[v as usize] += phi * sv.x;
+                        rhs[nv + v as usize] += phi * sv.y;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Surface tension `-γ ∫_Γ div_Γ v ds`, `div_Γ v = div v - n·(∇v) n`, on the straight
+    /// piece of the zero level of the P1 level set in each cut triangle (P1 velocity part: the
+    /// bubble contribution is dropped, it is of higher order).
+    fn add_surface_tension(&self, rhs: &mut [f64]) -> Result<()> {
+        let Viscosity::TwoPhase { phi, .. } = &self.viscosity else {
+            return Ok(());
+        };
+        let mesh = self.mesh;
+        let nv = mesh.n_points();
+        let gamma = self.surface_tension;
+        for t in mesh.live_tris() {
+            let v = mesh.tris[t].map(|i| i as usize);
+            let f = v.map(|i| phi[i]);
+            let p = mesh.tri_points(t);
+            // Zero crossings on the edges.
+            let mut cut = Vec::with_capacity(2);
+            for i in 0..3 {
+                let (a, b) = ((i + 1) % 3, (i + 2) % 3);
+                if (f[a] < 0.0) != (f[b] < 0.0) {
+                    let s = f[a] / (f[a] - f[b]);
+                    cut.push(p[a] + s * (p[b] - p[a]));
+                }
+            }
+            if cut.len() != 2 {
+                continue;
+            }
+            let len = (cut[1] - cut[0]).length();
+            let g = P1Geom::new(p);
+            let grad_phi: DVec2 = (0..3).map(|k| f[k] * g.grad[k]).sum();
+            let nrm = grad_phi.normalize_or_zero();
+            for k in 0..3 {
+                // div_Γ(φ_k e_c) = ∂_c φ_k - n_c (n · ∇φ_k)
+                let gk = g.grad[k];
+                let tang = gk - nrm * nrm.dot(gk);
+                rhs[v[k]] -= gamma * len * tang.x;
+                rhs[nv + v[k]] -= gamma * len * tang.y;
+            }
+        }
+        Ok(())
+    }
+
+    /// Schur-complement CG for the pressure.
+    fn solve_uzawa(
+        &self,
+        k: &Csr,
+        rhs: &[f64],
+        all_dirichlet: bool,
+        rtol: f64,
+        max_iter: usize,
+    ) -> Result<(Vec<f64>, StokesReport)> {
+        let mesh = self.mesh;
+        let nv = mesh.n_points();
+        let (nu, n) = (2 * nv, 3 * nv);
+        let a = k.sub_block(0..nu);
+        let chol = Cholesky::new(&a)?;
+        let mut c = k.sub_block(nu..n);
+        c.val.iter_mut().for_each(|v| *v = -*v);
+        let m = self.pressure_mass()?;
+        let mchol = Cholesky::new(&m)?;
+        let mut inner = 0usize;
+        let (f, g) = (&rhs[..nu], &rhs[nu..]);
+        let project = |v: &mut [f64]| {
+            if all_dirichlet {
+                let mean = v.iter().sum::<f64>() / v.len() as f64;
+                v.iter_mut().for_each(|x| *x -= mean);
+            }
+        };
+        // rhs of S p = B A⁻¹ F - G
+        let mut af = f.to_vec();
+        chol.solve_in_place(&mut af);
+        inner += 1;
+        let mut b = vec![0.0; nv];
+        k.block_matvec(nu..n, 0..nu, &af, &mut b);
+        b.iter_mut().zip(g).for_each(|(bi, gi)| *bi -= gi);
+        project(&mut b);
+        let mut p = vec![0.0; nv];
+        let inner_cell = std::cell::Cell::new(0usize);
+        let mut tmp_u = vec![0.0; nu];
+        let mut tmp_p = vec![0.0; nv];
+        let opts = CgOptions {
+            rtol,
+            atol: 0.0,
+            max_iter,
+            ..Default::default()
+        };
+        let rep = pcg(
+            |q, y| {
+                // y = B A⁻¹ Bᵀ q + C q
+                k.block_matvec(0..nu, nu..n, q, &mut tmp_u);
+                chol.solve_in_place(&mut tmp_u);
+                inner_cell.set(inner_cell.get() + 1);
+                k.block_matvec(nu..n, 0..nu, &tmp_u, y);
+                c.matvec(q, &mut tmp_p);
+                y.iter_mut().zip(&tmp_p).for_each(|(yi, ci)| *yi += ci);
+                project(y);
+            },
+            |r, z| {
+                z.copy_from_slice(r);
+                mchol.solve_in_place(z);
+                project(z);
+            },
+            &b,
+            &mut p,
+            &opts,
+        );
+        inner += inner_cell.get();
+        // u = A⁻¹ (F - Bᵀ p)
+        let mut u = vec![0.0; nu];
+        k.block_matvec(0..nu, nu..n, &p, &mut u);
+        u.iter_mut().zip(f).for_each(|(ui, fi)| *ui = fi - *ui);
+        chol.solve_in_place(&mut u);
+        inner += 1;
+        u.extend_from_slice(&p);
+        Ok((
+            u,
+            StokesReport {
+                uzawa_iterations: rep.iterations,
+                inner_iterations: inner,
+                converged: rep.converged,
+                ..Default::default()
+            },
+        ))
+    }
+
+    /// The viscosity-weighted pressure mass matrix `∫ μ⁻¹ φ_i φ_j` (degree-5 rule).
+    fn pressure_mass(&self) -> Result<Csr> {
+        let mesh = self.mesh;
+        let (slots, tris) = live_elements(mesh);
+        let mut m = Csr::from_elements(mesh.n_points(), &tris)?;
+        let rule = tri_rule(5);
+        assemble_matrix(&mut m, &tris, |e| {
+            let t = slots[e];
+            let area = mesh.tri_area(t);
+            // Arithmetic mean of μ over the element: a cut element is as stiff as its
+            // viscous part, so it must be weighted like it (harmonic averaging of the sampled
+            // 1/μ made the outer iteration count grow with the viscosity ratio).
+            let mu_mean = rule.mean(|l| self.viscosity.at(mesh, t, l));
+            let d = area / (6.0 * mu_mean);
+            let o = area / (12.0 * mu_mean);
+            [[d, o, o], [o, d, o], [o, o, d]]
+        })?;
+        Ok(m)
+    }
+}
+
+/// Sparse LU of the condensed system; with all-Dirichlet boundaries the matrix is bordered by
+/// the constraint `Σ_i p_i ∫φ_i = 0` (Lagrange multiplier in the last row and column).
+fn solve_direct(k: &Csr, rhs: &[f64], nv: usize, all_dirichlet: bool) -> Result<Vec<f64>> {
+    if !all_dirichlet {
+        let mut x = rhs.to_vec();
+        Lu::new(k)?.solve_in_place(&mut x);
+        return Ok(x);
+    }
+    // Constraint with unit weights (the kernel of the pressure block is the constant vector);
+    // the zero-mean shift is applied afterwards by the caller.
+    let n = k.n;
+    let mut row_ptr = Vec::with_capacity(n + 2);
+    let mut col = Vec::with_capacity(k.nnz() + 2 * nv + 1);
+    let mut val = Vec::with_capacity(k.nnz() + 2 * nv + 1);
+    row_ptr.push(0);
+    for i in 0..n {
+        for q in k.row_ptr[i]..k.row_ptr[i + 1] {
+            col.push(k.col[q]);
+            val.push(k.val[q]);
+        }
+        if i >= 2 * nv {
+            col.push(n as u32);
+            val.push(1.0);
+        }
+        row_ptr.push(col.len());
+    }
+    for j in 2 * nv..n {
+        col.push(j as u32);
+        val.push(1.0);
+    }
+    col.push(n as u32);
+    val.push(0.0);
+    row_ptr.push(col.len());
+    let kb = Csr {
+        n: n + 1,
+        row_ptr,
+        col,
+        val,
+    };
+    let mut x = rhs.to_vec();
+    x.push(0.0);
+    Lu::new(&kb)?.solve_in_place(&mut x);
+    x.truncate(n);
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err(Error::InvalidInput(
+            "Stokes direct solve: singular saddle-point matrix".into(),
+        ));
+    }
+    Ok(x)
+}
+
+/// A least-squares rigid motion `u(x) ≈ t + ω (x - c)^⊥` of a velocity field inside a region.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidFit {
+    /// Angular velocity `ω` (counter-clockwise positive).
+    pub omega: f64,
+    /// Velocity of the centroid `c` of the region.
+    pub translation: DVec2,
+    /// The centroid `c` of the fitted vertices (weighted).
+    pub centre: DVec2,
+    /// `max_i |u_i - t - ω (x_i - c)^⊥| / max_i |u_i|` over the fitted vertices.
+    pub max_deviation_rel: f64,
+    /// Number of vertices used.
+    pub vertices: usize,
+}
+
+/// Fits a rigid motion to the P1 `velocity` at the vertices `x` with `inside(x)`, weighting each
+/// vertex by its lumped-mass area (so the fit does not depend on how densely the region is
+/// meshed). The measure of rigidity of the Couette disk of 004 §5.1. Errors when fewer than two
+/// vertices are inside.
+pub fn rigid_motion_fit(
+    mesh: &Mesh2,
+    velocity: &[DVec2],
+    inside: impl Fn(DVec2) -> bool,
+) -> Result<RigidFit> {
+    if velocity.len() != mesh.n_points() {
+        return Err(Error::InvalidField {
+            name: "velocity".into(),
+            msg: format!("{} values for {} vertices", velocity.len(), mesh.n_points()),
+        });
+    }
+    let mut w = vec![0.0; mesh.n_points()];
+    for t in mesh.live_tris() {
+        let a = mesh.tri_area(t) / 3.0;
+        for v in mesh.tris[t] {
+            w[v as usize] += a;
+        }
+    }
+    let ids: Vec<usize> = (0..mesh.n_points())
+        .filter(|&v| w[v] > 0.0 && inside(mesh.points[v]))
+        .collect();
+    if ids.len() < 2 {
+        return Err(Error::InvalidInput(format!(
+            "rigid-motion fit needs at least 2 vertices inside the region, found {}",
+            ids.len()
+        )));
+    }
+    let wsum: f64 = ids.iter().map(|&v| w[v]).sum();
+    let c: DVec2 = ids.iter().map(|&v| w[v] * mesh.points[v]).sum::<DVec2>() / wsum;
+    let t: DVec2 = ids.iter().map(|&v| w[v] * velocity[v]).sum::<DVec2>() / wsum;
+    let (mut num, mut den) = (0.0, 0.0);
+    for &v in &ids {
+        let r = mesh.points[v] - c;
+        num += w[v] * r.perp().dot(velocity[v] - t);
+        den += w[v] * r.length_squared();
+    }
+    let omega = if den > 0.0 { num / den } else { 0.0 };
+    let (mut dev, mut umax) = (0.0f64, 0.0f64);
+    for &v in &ids {
+        let r = mesh.points[v] - c;
+        dev = dev.max((velocity[v] - t - omega * r.perp()).length());
+        umax = umax.max(velocity[v].length());
+    }
+    Ok(RigidFit {
+        omega,
+        translation: t,
+        centre: c,
+        max_deviation_rel: if umax > 0.0 { dev / umax } else { 0.0 },
+        vertices: ids.len(),
+    })
+}
+
+/// The velocity error `‖u_h - u‖_{L2}` (P1 + bubble) and pressure error `‖p_h - p‖_{L2}` of a
+/// solution against exact fields, with the degree-7 rule.
+pub fn stokes_errors(
+    mesh: &Mesh2,
+    sol: &StokesSolution,
+    u: impl Fn(DVec2) -> DVec2,
+    p: impl Fn(DVec2) -> f64,
+) -> (f64, f64) {
+    let rule = tri_rule(7);
+    let (mut eu, mut ep) = (0.0, 0.0);
+    for t in mesh.live_tris() {
+        let pts = mesh.tri_points(t);
+        let area = mesh.tri_area(t);
+        let pv = mesh.tris[t].map(|i| sol.pressure[i as usize]);
+        eu += area
+            * rule
+                .mean(|l| (sol.velocity_at(mesh, t, l) - u(bary_point(&pts, l))).length_squared());
+        ep += area
+            * rule.mean(|l| {
+                let e = l[0] * pv[0] + l[1] * pv[1] + l[2] * pv[2] - p(bary_point(&pts, l));
+                e * e
+            });
+    }
+    (eu.sqrt(), ep.sqrt())
+}
