@@ -3,5 +3,6 @@
 pub mod adapt_run;
 pub mod convergence;
 pub mod couette;
+pub mod peers;
 pub mod reinit;
 pub mod zalesak;
