@@ -16,7 +16,8 @@
 //! `peers_speed.csv`.
 //!
 //! Usage: `cargo run --release --example peers_compare -- [OUT_DIR] [--sweep-only|--speed-only]`
-//! (default `OUT_DIR` = `target/peers`). Peers missing on `PATH` are reported and skipped.
+//! (default `OUT_DIR` = `target/peers`). Peers missing on `PATH` are reported and skipped;
+//! `ANISOMESH_PEERS_KINDS=mmg2d-metric,bamg-metric,...` restricts the sweep to those adapters.
 
 use anisomesh::adapt::{adapt, AdaptOptions};
 use anisomesh::bench::peers::{
@@ -181,7 +182,15 @@ fn main() -> anisomesh::Result<()> {
             "sweep: background {0}x{0}, {1} fixed-point iterations per peer",
             opts.background, opts.iterations
         );
-        let results = sweep(&PeerKind::ALL, eps, &opts, &out)?;
+        // `ANISOMESH_PEERS_KINDS=mmg2d-metric,bamg-metric` restricts the sweep (default: all).
+        let kinds: Vec<PeerKind> = match std::env::var("ANISOMESH_PEERS_KINDS") {
+            Ok(list) => PeerKind::ALL
+                .into_iter()
+                .filter(|k| list.split(',').any(|s| s.trim() == k.slug()))
+                .collect(),
+            Err(_) => PeerKind::ALL.to_vec(),
+        };
+        let results = sweep(&kinds, eps, &opts, &out)?;
         for r in &results {
             print(r);
         }
