@@ -402,3 +402,60 @@ fn mmg3d_reads_our_cube_and_3d_tensor_order() {
         r.tets.len()
     );
 }
+
+#[test]
+fn vtk_reads_our_vtu() {
+    let has_vtk = Command::new("python3")
+        .args(["-c", "import vtkmodules.vtkIOXML"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !has_vtk {
+        println!("SKIPPED: the python module vtk (ParaView's reader) is not importable (pip install vtk)");
+        return;
+    }
+    let d = scratch();
+    let m = Mesh2::rectangle(DVec2::ZERO, DVec2::ONE, 4, 3, GridPattern::CrissCross).unwrap();
+    let phi: Vec<f64> = m.points.iter().map(|p| p.x - 0.25).collect();
+    let grad = vec![DVec2::new(1.0, 0.0); m.n_points()];
+    let met = metric(&m);
+    let area: Vec<f64> = (0..m.n_tris()).map(|t| m.tri_area(t)).collect();
+    let p = d.join("fields.vtu");
+    io::write_vtu(
+        &p,
+        &m,
+        &[
+            ("phi", io::FieldRef::Scalar(&phi)),
+            ("grad", io::FieldRef::Vector(&grad)),
+            ("metric", io::FieldRef::Tensor(&met)),
+        ],
+        &[("area", &area)],
+    )
+    .unwrap();
+    let out = python(VTK_SCRIPT, &[&p]);
+    let expect = format!(
+        "{} {} 5 1 3 9 {} 1.000000000000 -0.250000",
+        m.n_points(),
+        m.n_tris(),
+        m.n_tris()
+    );
+    assert_eq!(out.trim(), expect);
+    println!("VTK XML reader read our .vtu: {}", out.trim());
+}
+
+const VTK_SCRIPT: &str = r#"import sys
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+r = vtkXMLUnstructuredGridReader()
+r.SetFileName(sys.argv[1])
+r.Update()
+g = r.GetOutput()
+pd, cd = g.GetPointData(), g.GetCellData()
+tot = 0.0
+for c in range(g.GetNumberOfCells()):
+    ids = g.GetCell(c).GetPointIds()
+    (ax, ay, _), (bx, by, _), (cx, cy, _) = [g.GetPoint(ids.GetId(k)) for k in range(3)]
+    tot += 0.5 * ((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
+print(g.GetNumberOfPoints(), g.GetNumberOfCells(), g.GetCellType(0),
+      pd.GetArray('phi').GetNumberOfComponents(), pd.GetArray('grad').GetNumberOfComponents(),
+      pd.GetArray('metric').GetNumberOfComponents(), cd.GetArray('tri_ref').GetNumberOfTuples(),
+      '%.12f' % tot, '%.6f' % pd.GetArray('phi').GetRange()[0])
+"#;

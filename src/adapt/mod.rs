@@ -12,6 +12,17 @@
 //! - `sources.rs`: [`MetricSource`] implementations and metric fields from level sets/Hessians.
 //! - `shape.rs`: [`adapt_to_shape`]; `report.rs`: [`MeshReport`].
 //!
+//! Entry points (for the CLI):
+//! - `anisomesh adapt` on a given mesh + metric (`.sol`): [`adapt`]`(&mut mesh, &mut metric,
+//!   &mut fields, None, &AdaptOptions::default())`, then [`mesh_report`] (or
+//!   `metric::quality_stats`) for the numbers; [`AdaptReport`] is `Serialize`.
+//! - a metric from a P1 level set: [`LevelSetMetric::field_from_p1`]; from any P1 field with a
+//!   target vertex count: [`HessianMetric::field`].
+//! - an exact shape: [`adapt_to_shape`]`(&shape, (lo, hi), &ShapeAdaptOptions::default())`
+//!   returns `(mesh, level set, report)`; then [`mesh_report`]`(&mesh, &metric, &u,
+//!   Some(&shape))` with the metric from [`AnalyticLevelSetSource::evaluate`] (graded like the
+//!   run) gives vertices, quality, area, perimeter and Hausdorff distance.
+//!
 //! Invariants kept by every operator: counter-clockwise triangles (exact `orient2d`), symmetric
 //! `neighbours`, `edge_ref`, `vert_tri`, `corner`, `required`, `vert_ref`, `tri_ref`. Deleted
 //! triangles are tombstones until [`crate::mesh::Mesh2::compact`] (the driver compacts at the

@@ -1,6 +1,8 @@
 //! Benchmark flows: one file per benchmark, each returning a typed report.
 
+pub mod adapt_run;
 pub mod convergence;
 pub mod couette;
+pub mod peers;
 pub mod reinit;
 pub mod zalesak;

@@ -29,9 +29,8 @@ pub(crate) struct Closest {
     pub point: DVec2,
     /// Outward unit normal of the piece at `point` (for an end point, the normal of this piece).
     pub normal: DVec2,
-    /// Signed curvature factor for the Hessian: `Some(centre)` when the closest point is in the
-    /// interior of an arc, `None` for a segment interior, and the closest point itself counts as
-    /// a "point feature" when `at_end` is set.
+    /// `Some(centre)` when the closest point is inside an arc (the distance then varies as
+    /// `|p - centre|`), `None` otherwise.
     pub arc_centre: Option<DVec2>,
     /// Whether the closest point is an end point of the piece (a corner of the curve).
     pub at_end: bool,

@@ -1,0 +1,725 @@
+//! Side-by-side comparison with the peer mesh adapters on the same problem, in the same run.
+//!
+//! The problem is the Zalesak slotted disk of 004 §5.1 (radius 0.5 centred at (0, 0.75), slot
+//! `|x| ≤ 0.06` up to `y = 0.85`, in `[-2, 2]²`) and its geometric metric, 004 eq. (6),
+//!
+//! ```text
+//! M = ∇u ∇uᵀ / hmin² + |D²u| / ε,   bounded by hmin = 0.001, hmax = 0.2,
+//! ```
+//!
+//! with `u` the exact signed distance, applied in a band around the zero level and graded
+//! outside it ([`LevelSetMetric`], the same target our own driver uses).
+//!
+//! Peers (external programs, found on `PATH`; a missing one gives
+//! [`PeerResult::unavailable`], never a panic):
+//! - [`PeerKind::Mmg2dMetric`]: `mmg2d_O3 -in bg.mesh -sol metric.sol -out out.mesh` (MMG 5.8).
+//! - [`PeerKind::Mmg2dLevelSet`]: `mmg2d_O3 -in bg.mesh -ls -sol u.sol -hausd ε -hmin -hmax`
+//!   (MMG's level-set discretisation mode: the zero level becomes mesh edges).
+//! - [`PeerKind::BamgMetric`]: FreeFem++ `adaptmesh(Th, m11, m12, m22, IsMetric=1, ...)`.
+//! - [`PeerKind::BamgLevelSet`]: FreeFem++ `adaptmesh(Th, u, err=ε, hmin, hmax)` (BAMG's own
+//!   Hessian metric of the level set).
+//! - [`PeerKind::Anisomesh`]: our [`crate::adapt::adapt`] with the analytic source.
+//!
+//! A peer only sees the metric (or level set) at the vertices of the mesh it is given, so it is
+//! run as a user would: the fixed point "evaluate at the current vertices → adapt → repeat"
+//! ([`PeerOptions::iterations`] times) starting from a uniform background grid. Every result is
+//! then measured the same way ([`measure`]): vertex count, edge lengths and `Q_ani` in the target
+//! metric re-evaluated at the peer's vertices (004 §3.4), area and perimeter of the zero level of
+//! the exact distance interpolated on the peer's mesh, the two-sided Hausdorff distance between
+//! that zero level and the exact boundary, and the wall time of the peer's runs.
+
+use crate::adapt::{adapt, AdaptOptions, AnalyticLevelSetSource, LevelSetMetric};
+use crate::error::{Error, Result};
+use crate::geom::DVec2;
+use crate::io::{self, Sol};
+use crate::levelset::interface::{
+    enclosed_area, extract_zero_level, interface_distance, interface_length,
+};
+use crate::levelset::shapes::{Shape, Zalesak};
+use crate::mesh::{GridPattern, Mesh2};
+use crate::metric::length::quality_stats;
+use crate::metric::Sym2;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+/// The FreeFem++ driver script, with `@IN@`, `@DATA@`, `@OUT@` and `@ADAPT@` placeholders.
+pub const BAMG_SCRIPT: &str = include_str!("../../scripts/peers/bamg_adapt.edp");
+
+/// The benchmark slotted disk (built once).
+pub fn zalesak() -> &'static Zalesak {
+    static SHAPE: OnceLock<Zalesak> = OnceLock::new();
+    SHAPE.get_or_init(Zalesak::default)
+}
+
+/// The exact signed distance to the slotted disk (negative inside) and its gradient and Hessian
+/// in closed form ([`Zalesak`]'s [`Shape`] implementation).
+pub fn zalesak_exact(p: DVec2) -> (f64, DVec2, Sym2) {
+    let s = zalesak();
+    (s.distance(p), s.gradient(p), s.hessian(p))
+}
+
+/// The target metric of the comparison: 004 eq. (6) with hmin = 0.001, hmax = 0.2 and the given
+/// `eps`, in the band `|u| < 4 hmin`, graded by 0.3 outside, anisotropy at most 1e4.
+pub fn target_metric(eps: f64) -> LevelSetMetric {
+    LevelSetMetric {
+        eps,
+        hmin: 1e-3,
+        hmax: 0.2,
+        max_aniso: 1e4,
+        band: 4e-3,
+        grade: 0.3,
+        analytic: true,
+        isotropic: false,
+    }
+}
+
+/// The metric `m` and the exact signed distance at every vertex of `mesh`.
+pub fn evaluate_target(mesh: &Mesh2, m: &LevelSetMetric) -> (Vec<Sym2>, Vec<f64>) {
+    AnalyticLevelSetSource::new(zalesak_exact, *m).evaluate(mesh)
+}
+
+/// The uniform background mesh: `n x n` vertices on `[-2, 2]²` (right diagonals).
+pub fn background(n: usize) -> Result<Mesh2> {
+    if n < 2 {
+        return Err(Error::InvalidInput(format!(
+            "peer background: need at least 2 x 2 vertices (got {n})"
+        )));
+    }
+    Mesh2::rectangle(
+        DVec2::splat(-2.0),
+        DVec2::splat(2.0),
+        n - 1,
+        n - 1,
+        GridPattern::Right,
+    )
+}
+
+/// Which adapter a run uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum PeerKind {
+    Mmg2dMetric,
+    Mmg2dLevelSet,
+    BamgMetric,
+    BamgLevelSet,
+    Anisomesh,
+}
+
+impl PeerKind {
+    /// All kinds, peers first.
+    pub const ALL: [PeerKind; 5] = [
+        PeerKind::Mmg2dMetric,
+        PeerKind::Mmg2dLevelSet,
+        PeerKind::BamgMetric,
+        PeerKind::BamgLevelSet,
+        PeerKind::Anisomesh,
+    ];
+
+    /// A short name for file names and CSV rows.
+    pub fn slug(self) -> &'static str {
+        match self {
+            PeerKind::Mmg2dMetric => "mmg2d-metric",
+            PeerKind::Mmg2dLevelSet => "mmg2d-ls",
+            PeerKind::BamgMetric => "bamg-metric",
+            PeerKind::BamgLevelSet => "bamg-ls",
+            PeerKind::Anisomesh => "anisomesh",
+        }
+    }
+
+    /// The external program the kind runs (`None` for our own driver).
+    pub fn program(self) -> Option<&'static str> {
+        match self {
+            PeerKind::Mmg2dMetric | PeerKind::Mmg2dLevelSet => Some("mmg2d_O3"),
+            PeerKind::BamgMetric | PeerKind::BamgLevelSet => Some("FreeFem++"),
+            PeerKind::Anisomesh => None,
+        }
+    }
+
+    fn is_level_set(self) -> bool {
+        matches!(self, PeerKind::Mmg2dLevelSet | PeerKind::BamgLevelSet)
+    }
+}
+
+/// Outcome of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum PeerStatus {
+    Ok,
+    /// The program is not installed (not on `PATH`).
+    Unavailable(String),
+    /// The program ran but failed, timed out, or its output could not be read.
+    Failed(String),
+}
+
+/// One run of one adapter at one accuracy, measured by [`measure`].
+#[derive(Debug, Clone, Serialize)]
+pub struct PeerResult {
+    pub peer: PeerKind,
+    pub status: PeerStatus,
+    pub eps: f64,
+    /// Fixed-point iterations run (adapter calls).
+    pub iterations: usize,
+    pub vertices: usize,
+    pub triangles: usize,
+    /// Whether the mesh passes [`Mesh2::check`] (conforming, counter-clockwise, consistent).
+    pub valid: bool,
+    /// Share of edges with metric length in `[1/sqrt(2), sqrt(2)]` (target metric).
+    pub edge_length_in_range: f64,
+    pub q_ani_mean: f64,
+    pub q_ani_max: f64,
+    /// Area of `{u_h < 0}` and its relative error against the exact 0.7135424760.
+    pub area: f64,
+    pub area_rel_error: f64,
+    /// Length of `{u_h = 0}` and its relative error against the exact 4.3340766629.
+    pub perimeter: f64,
+    pub perimeter_rel_error: f64,
+    /// Two-sided Hausdorff distance between `{u_h = 0}` and the exact boundary.
+    pub hausdorff: f64,
+    /// Wall time of the adapter calls (all iterations; the external process included).
+    pub seconds: f64,
+    /// Wall time of the last call alone.
+    pub seconds_last: f64,
+    /// Time the peer reports itself for the last call (MMG's "ELAPSED TIME", BAMG's CPU time of
+    /// `adaptmesh`), when it prints one.
+    pub self_seconds_last: Option<f64>,
+}
+
+impl PeerResult {
+    fn empty(peer: PeerKind, eps: f64, status: PeerStatus) -> PeerResult {
+        PeerResult {
+            peer,
+            status,
+            eps,
+            iterations: 0,
+            vertices: 0,
+            triangles: 0,
+            valid: false,
+            edge_length_in_range: f64::NAN,
+            q_ani_mean: f64::NAN,
+            q_ani_max: f64::NAN,
+            area: f64::NAN,
+            area_rel_error: f64::NAN,
+            perimeter: f64::NAN,
+            perimeter_rel_error: f64::NAN,
+            hausdorff: f64::NAN,
+            seconds: f64::NAN,
+            seconds_last: f64::NAN,
+            self_seconds_last: None,
+        }
+    }
+
+    /// A result for a peer that is not installed (every measure NaN).
+    pub fn unavailable(peer: PeerKind, eps: f64, reason: impl Into<String>) -> PeerResult {
+        PeerResult::empty(peer, eps, PeerStatus::Unavailable(reason.into()))
+    }
+
+    /// A result for a peer that failed (every measure NaN).
+    pub fn failed(peer: PeerKind, eps: f64, reason: impl Into<String>) -> PeerResult {
+        PeerResult::empty(peer, eps, PeerStatus::Failed(reason.into()))
+    }
+
+    /// Whether the run produced a measured mesh.
+    pub fn is_ok(&self) -> bool {
+        self.status == PeerStatus::Ok
+    }
+
+    /// The CSV header matching [`PeerResult::csv_row`].
+    pub const CSV_HEADER: &'static str = "peer,status,eps,iterations,vertices,triangles,valid,\
+edge_length_in_range,q_ani_mean,q_ani_max,area,area_rel_error,perimeter,perimeter_rel_error,\
+hausdorff,seconds,seconds_last,self_seconds_last";
+
+    /// One CSV line (no newline); the status is `ok`, `unavailable` or `failed`.
+    pub fn csv_row(&self) -> String {
+        let status = match self.status {
+            PeerStatus::Ok => "ok",
+            PeerStatus::Unavailable(_) => "unavailable",
+            PeerStatus::Failed(_) => "failed",
+        };
+        format!(
+            "{},{},{:e},{},{},{},{},{:.6},{:.6},{:.6},{:.10},{:.6e},{:.10},{:.6e},{:.6e},{:.4},{:.4},{}",
+            self.peer.slug(),
+            status,
+            self.eps,
+            self.iterations,
+            self.vertices,
+            self.triangles,
+            self.valid,
+            self.edge_length_in_range,
+            self.q_ani_mean,
+            self.q_ani_max,
+            self.area,
+            self.area_rel_error,
+            self.perimeter,
+            self.perimeter_rel_error,
+            self.hausdorff,
+            self.seconds,
+            self.seconds_last,
+            self.self_seconds_last
+                .map(|s| format!("{s:.4}"))
+                .unwrap_or_default()
+        )
+    }
+}
+
+/// Measures an adapted mesh against the Zalesak problem (see the module documentation): the
+/// target metric `m` and the exact distance are evaluated at the mesh's vertices; the zero level
+/// of the P1 interpolant is compared with the exact area, perimeter and boundary
+/// ([`crate::levelset::interface`], 4 samples per segment for the Hausdorff distance). A mesh
+/// whose zero level is empty gets infinite interface errors.
+pub fn measure(peer: PeerKind, mesh: &Mesh2, m: &LevelSetMetric) -> PeerResult {
+    let shape = zalesak();
+    let (metric, u) = evaluate_target(mesh, m);
+    let q = quality_stats(mesh, &metric);
+    let exact_area = shape.exact_area().unwrap_or(f64::NAN);
+    let exact_perimeter = shape.exact_perimeter().unwrap_or(f64::NAN);
+    let area = enclosed_area(mesh, &u).unwrap_or(f64::NAN);
+    let perimeter = interface_length(mesh, &u).unwrap_or(f64::NAN);
+    let hausdorff = extract_zero_level(mesh, &u)
+        .map(|pl| interface_distance(&pl, shape, 4).hausdorff)
+        .unwrap_or(f64::INFINITY);
+    PeerResult {
+        vertices: mesh.n_points(),
+        triangles: mesh.n_live_tris(),
+        valid: mesh.check().is_ok(),
+        edge_length_in_range: q.edge_length_in_range,
+        q_ani_mean: q.q_ani_mean,
+        q_ani_max: q.q_ani_max,
+        area,
+        area_rel_error: (area - exact_area) / exact_area,
+        perimeter,
+        perimeter_rel_error: (perimeter - exact_perimeter) / exact_perimeter,
+        hausdorff,
+        ..PeerResult::empty(peer, m.eps, PeerStatus::Ok)
+    }
+}
+
+/// The first executable file called `name` in the directories of `PATH`. A pyenv shim (as
+/// `pip install mmgpy` leaves for `mmg2d_O3`) is resolved to the program it starts, so that the
+/// timings do not include the shim's start-up (about 0.5 s here).
+pub fn find_program(name: &str) -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    let found = std::env::split_paths(&path)
+        .map(|d| d.join(name))
+        .find(|p| p.is_file())?;
+    if found.to_string_lossy().contains("pyenv/shims") {
+        let real = Command::new("pyenv")
+            .arg("which")
+            .arg(name)
+            .stderr(Stdio::null())
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| PathBuf::from(String::from_utf8_lossy(&o.stdout).trim()))
+            .filter(|p| p.is_file());
+        return Some(real.map(unwrap_mmgpy).unwrap_or(found));
+    }
+    Some(unwrap_mmgpy(found))
+}
+
+/// `pip install mmgpy` installs `mmg2d_O3` as a Python console script that starts the binary
+/// shipped in the package (`mmgpy/bin/mmg2d_O3`); that binary, when found, else `script`.
+fn unwrap_mmgpy(script: PathBuf) -> PathBuf {
+    let Ok(text) = std::fs::read(&script) else {
+        return script;
+    };
+    let head = String::from_utf8_lossy(&text[..text.len().min(512)]).to_string();
+    let (Some(python), true) = (
+        head.lines().next().and_then(|l| l.strip_prefix("#!")),
+        head.contains("mmgpy"),
+    ) else {
+        return script;
+    };
+    let Some(name) = script.file_name() else {
+        return script;
+    };
+    Command::new(python.trim())
+        .args([
+            "-c",
+            "import mmgpy, os; print(os.path.dirname(mmgpy.__file__))",
+        ])
+        .stderr(Stdio::null())
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| {
+            PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())
+                .join("bin")
+                .join(name)
+        })
+        .filter(|p| p.is_file())
+        .unwrap_or(script)
+}
+
+/// The end of an external run.
+#[derive(Debug, Clone)]
+pub struct RunOutcome {
+    pub seconds: f64,
+    pub success: bool,
+    pub timed_out: bool,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+/// Runs `cmd` (output captured through files in `log_dir`, named after `tag`), killing it after
+/// `timeout`. An error only when the program cannot be started.
+pub fn run_with_timeout(
+    cmd: &mut Command,
+    timeout: Duration,
+    log_dir: &Path,
+    tag: &str,
+) -> Result<RunOutcome> {
+    let out_path = log_dir.join(format!("{tag}.stdout"));
+    let err_path = log_dir.join(format!("{tag}.stderr"));
+    let out = std::fs::File::create(&out_path).map_err(|e| Error::io(&out_path, e))?;
+    let err = std::fs::File::create(&err_path).map_err(|e| Error::io(&err_path, e))?;
+    let t0 = Instant::now();
+    let mut child = cmd
+        .stdin(Stdio::null())
+        .stdout(out)
+        .stderr(err)
+        .spawn()
+        .map_err(|e| Error::io(Path::new(cmd.get_program()), e))?;
+    let mut timed_out = false;
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(s)) => break Some(s),
+            Ok(None) if t0.elapsed() > timeout => {
+                timed_out = true;
+                // The child is ours: kill it by its handle and reap it.
+                let _ = child.kill();
+                let _ = child.wait();
+                break None;
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+            Err(e) => return Err(Error::io(Path::new(cmd.get_program()), e)),
+        }
+    };
+    let seconds = t0.elapsed().as_secs_f64();
+    let read = |p: &Path| std::fs::read_to_string(p).unwrap_or_default();
+    Ok(RunOutcome {
+        seconds,
+        success: status.is_some_and(|s| s.success()),
+        timed_out,
+        stdout: read(&out_path),
+        stderr: read(&err_path),
+    })
+}
+
+/// MMG's self-reported time in seconds, from its last `ELAPSED TIME  1.234s` line (runs over a
+/// minute print `ELAPSED TIME  25m21s (1521.280s)`: the number in parentheses).
+pub fn parse_mmg_elapsed(stdout: &str) -> Option<f64> {
+    let rest = stdout
+        .lines()
+        .rev()
+        .find_map(|l| l.trim().strip_prefix("ELAPSED TIME"))?;
+    let secs = match (rest.find('('), rest.find(')')) {
+        (Some(a), Some(b)) if a < b => &rest[a + 1..b],
+        _ => rest,
+    };
+    secs.trim().trim_end_matches('s').trim().parse().ok()
+}
+
+/// The BAMG driver's `BAMG_SECONDS t` line.
+pub fn parse_bamg_seconds(stdout: &str) -> Option<f64> {
+    stdout
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("BAMG_SECONDS"))
+        .and_then(|s| s.trim().parse().ok())
+}
+
+/// Options of a peer run.
+#[derive(Debug, Clone)]
+pub struct PeerOptions {
+    /// Background grid: `n x n` vertices on `[-2, 2]²`.
+    pub background: usize,
+    /// Fixed-point iterations (adapter calls) for the external peers.
+    pub iterations: usize,
+    /// Time limit of one external call.
+    pub timeout: Duration,
+    /// Where inputs, outputs and logs go (one sub-directory per peer and `eps`).
+    pub work_dir: PathBuf,
+    /// BAMG's `nbvx` (maximal vertex count; FreeFem's default 9000 is too small here).
+    pub bamg_max_vertices: usize,
+}
+
+impl Default for PeerOptions {
+    fn default() -> Self {
+        PeerOptions {
+            background: 50,
+            iterations: 3,
+            timeout: Duration::from_secs(600),
+            work_dir: std::env::temp_dir().join("anisomesh-peers"),
+            bamg_max_vertices: 5_000_000,
+        }
+    }
+}
+
+/// Writes `mesh` as `<stem>.mesh` and the metric `metric` as the tensor `<stem>.sol` (MMG's
+/// layout) in `dir`; returns both paths.
+pub fn write_metric_input(
+    dir: &Path,
+    stem: &str,
+    mesh: &Mesh2,
+    metric: &[Sym2],
+) -> Result<(PathBuf, PathBuf)> {
+    let (mp, sp) = (
+        dir.join(format!("{stem}.mesh")),
+        dir.join(format!("{stem}.sol")),
+    );
+    io::write_medit2(&mp, mesh)?;
+    io::write_sol(&sp, &Sol::metric(metric.to_vec()))?;
+    Ok((mp, sp))
+}
+
+/// Writes `mesh` as `<stem>.mesh` and the scalar level set `u` as `<stem>.sol` in `dir`.
+pub fn write_levelset_input(
+    dir: &Path,
+    stem: &str,
+    mesh: &Mesh2,
+    u: &[f64],
+) -> Result<(PathBuf, PathBuf)> {
+    let (mp, sp) = (
+        dir.join(format!("{stem}.mesh")),
+        dir.join(format!("{stem}.sol")),
+    );
+    io::write_medit2(&mp, mesh)?;
+    io::write_sol(&sp, &Sol::scalar(u.to_vec()))?;
+    Ok((mp, sp))
+}
+
+/// The FreeFem++ data file of [`BAMG_SCRIPT`]: the count, then three numbers per vertex.
+pub fn write_bamg_data(path: &Path, rows: &[[f64; 3]]) -> Result<()> {
+    io::atomic_write(path, |w| {
+        writeln!(w, "{}", rows.len())?;
+        for r in rows {
+            writeln!(w, "{:.17e} {:.17e} {:.17e}", r[0], r[1], r[2])?;
+        }
+        Ok(())
+    })
+}
+
+/// The BAMG driver script for one call: `adapt` is the `adaptmesh(...)` expression.
+pub fn bamg_script(mesh_in: &Path, data: &Path, mesh_out: &Path, adapt: &str) -> String {
+    BAMG_SCRIPT
+        .replace("@IN@", &mesh_in.display().to_string())
+        .replace("@DATA@", &data.display().to_string())
+        .replace("@OUT@", &mesh_out.display().to_string())
+        .replace("@ADAPT@", adapt)
+}
+
+/// One external adapter call on `mesh`, returning the adapted mesh, the wall time and the
+/// self-reported time.
+fn call_peer(
+    kind: PeerKind,
+    exe: &Path,
+    mesh: &Mesh2,
+    m: &LevelSetMetric,
+    opts: &PeerOptions,
+    dir: &Path,
+    k: usize,
+) -> Result<(Mesh2, f64, Option<f64>)> {
+    let (metric, u) = evaluate_target(mesh, m);
+    let stem = format!("in{k}");
+    let out = dir.join(format!("out{k}.mesh"));
+    let _ = std::fs::remove_file(&out);
+    let mut cmd = Command::new(exe);
+    match kind {
+        PeerKind::Mmg2dMetric | PeerKind::Mmg2dLevelSet => {
+            let (mp, sp) = if kind.is_level_set() {
+                write_levelset_input(dir, &stem, mesh, &u)?
+            } else {
+                write_metric_input(dir, &stem, mesh, &metric)?
+            };
+            cmd.arg("-v").arg("1").arg("-in").arg(&mp);
+            if kind.is_level_set() {
+                cmd.arg("-ls").arg("-hausd").arg(format!("{:e}", m.eps));
+                cmd.arg("-hmin").arg(format!("{:e}", m.hmin));
+                cmd.arg("-hmax").arg(format!("{:e}", m.hmax));
+            }
+            cmd.arg("-sol").arg(&sp).arg("-out").arg(&out);
+        }
+        PeerKind::BamgMetric | PeerKind::BamgLevelSet => {
+            let mp = dir.join(format!("{stem}.mesh"));
+            io::write_medit2(&mp, mesh)?;
+            let data = dir.join(format!("{stem}.txt"));
+            let (rows, adapt): (Vec<[f64; 3]>, String) = if kind.is_level_set() {
+                (
+                    u.iter().map(|&v| [v, 0.0, 0.0]).collect(),
+                    format!(
+                        "adaptmesh(Th, a, err={:e}, hmin={:e}, hmax={:e}, nbvx={})",
+                        m.eps, m.hmin, m.hmax, opts.bamg_max_vertices
+                    ),
+                )
+            } else {
+                (
+                    metric.iter().map(|s| [s.xx, s.xy, s.yy]).collect(),
+                    format!(
+                        "adaptmesh(Th, a, b, c, IsMetric=1, hmin={:e}, hmax={:e}, nbvx={})",
+                        m.hmin, m.hmax, opts.bamg_max_vertices
+                    ),
+                )
+            };
+            write_bamg_data(&data, &rows)?;
+            let edp = dir.join(format!("adapt{k}.edp"));
+            let text = bamg_script(&mp, &data, &out, &adapt);
+            io::atomic_write(&edp, |w| w.write_all(text.as_bytes()))?;
+            cmd.arg("-nw").arg("-v").arg("0").arg(&edp);
+        }
+        PeerKind::Anisomesh => {
+            return Err(Error::InvalidInput(
+                "anisomesh is not an external peer".into(),
+            ))
+        }
+    }
+    let tag = format!("call{k}");
+    let run = run_with_timeout(&mut cmd, opts.timeout, dir, &tag)?;
+    let what = format!("{} call {k} in {}", kind.slug(), dir.display());
+    if run.timed_out {
+        return Err(Error::NotConverged(format!(
+            "{what}: timed out after {:.0} s",
+            run.seconds
+        )));
+    }
+    if !run.success || !out.is_file() {
+        let tail: String = run
+            .stdout
+            .lines()
+            .rev()
+            .take(5)
+            .collect::<Vec<_>>()
+            .join(" | ");
+        return Err(Error::InvalidInput(format!(
+            "{what}: failed (no output mesh); last lines: {tail} {}",
+            run.stderr.trim()
+        )));
+    }
+    let own = match kind {
+        PeerKind::BamgMetric | PeerKind::BamgLevelSet => parse_bamg_seconds(&run.stdout),
+        _ => parse_mmg_elapsed(&run.stdout),
+    };
+    Ok((io::read_medit2(&out)?, run.seconds, own))
+}
+
+/// Runs one external peer at accuracy `eps`: the fixed point from the background grid, then
+/// [`measure`]. Never fails: a missing program or a failed call is in the result's status.
+pub fn run_peer(kind: PeerKind, eps: f64, opts: &PeerOptions) -> PeerResult {
+    if kind == PeerKind::Anisomesh {
+        return run_anisomesh(eps, opts);
+    }
+    let Some(name) = kind.program() else {
+        return PeerResult::failed(kind, eps, "no program");
+    };
+    let Some(exe) = find_program(name) else {
+        return PeerResult::unavailable(kind, eps, format!("{name} not found on PATH"));
+    };
+    let m = target_metric(eps);
+    let dir = opts.work_dir.join(format!("{}_eps{eps:e}", kind.slug()));
+    let go = || -> Result<PeerResult> {
+        std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+        let mut mesh = background(opts.background)?;
+        let (mut total, mut last, mut own) = (0.0, 0.0, None);
+        for k in 0..opts.iterations.max(1) {
+            let (next, s, o) = call_peer(kind, &exe, &mesh, &m, opts, &dir, k)?;
+            mesh = next;
+            total += s;
+            last = s;
+            own = o;
+        }
+        let mut r = measure(kind, &mesh, &m);
+        r.iterations = opts.iterations.max(1);
+        r.seconds = total;
+        r.seconds_last = last;
+        r.self_seconds_last = own;
+        Ok(r)
+    };
+    go().unwrap_or_else(|e| PeerResult::failed(kind, eps, e.to_string()))
+}
+
+/// Our own driver on the same problem: [`crate::adapt::adapt`] from the background grid with the
+/// analytic eq. (6) source (it re-evaluates the exact metric at new vertices, so one call).
+pub fn run_anisomesh(eps: f64, opts: &PeerOptions) -> PeerResult {
+    let m = target_metric(eps);
+    let go = || -> Result<PeerResult> {
+        let mut mesh = background(opts.background)?;
+        let source = AnalyticLevelSetSource::new(zalesak_exact, m);
+        let (mut metric, u) = source.evaluate(&mesh);
+        let mut fields = vec![u];
+        let t0 = Instant::now();
+        adapt(
+            &mut mesh,
+            &mut metric,
+            &mut fields,
+            Some(&source),
+            &AdaptOptions::default(),
+        )?;
+        let s = t0.elapsed().as_secs_f64();
+        let mut r = measure(PeerKind::Anisomesh, &mesh, &m);
+        r.iterations = 1;
+        r.seconds = s;
+        r.seconds_last = s;
+        Ok(r)
+    };
+    go().unwrap_or_else(|e| PeerResult::failed(PeerKind::Anisomesh, eps, e.to_string()))
+}
+
+/// The accuracy sweep: every kind at every `eps`, written as `peers_sweep.csv` in `out_dir` (the
+/// points of the error-versus-vertex-count figure). Unavailable peers appear as such in the CSV.
+pub fn sweep(
+    kinds: &[PeerKind],
+    eps: &[f64],
+    opts: &PeerOptions,
+    out_dir: &Path,
+) -> Result<Vec<PeerResult>> {
+    let mut all = Vec::new();
+    for &e in eps {
+        for &k in kinds {
+            all.push(run_peer(k, e, opts));
+        }
+    }
+    write_csv(&out_dir.join("peers_sweep.csv"), &all)?;
+    Ok(all)
+}
+
+/// Writes results as CSV ([`PeerResult::CSV_HEADER`]), creating the directory.
+pub fn write_csv(path: &Path, results: &[PeerResult]) -> Result<()> {
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).map_err(|e| Error::io(d, e))?;
+    }
+    io::atomic_write(path, |w| {
+        writeln!(w, "{}", PeerResult::CSV_HEADER)?;
+        for r in results {
+            writeln!(w, "{}", r.csv_row())?;
+        }
+        Ok(())
+    })
+}
+
+/// The heavy speed case of issue 3: the background is the `n x n` grid and the metric is eq. (6)
+/// with `eps = hmin` (1e-5 in the issue), hmax = 0.2, evaluated at the grid vertices in a band
+/// of one background cell (so the grid sees the interface) — written as `<dir>/BG.mesh` and
+/// `<dir>/M.sol`. Returns the two paths.
+pub fn write_speed_case(dir: &Path, n: usize, eps: f64) -> Result<(PathBuf, PathBuf)> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let mesh = background(n)?;
+    let m = speed_case_metric(n, eps);
+    let (metric, _) = evaluate_target(&mesh, &m);
+    let (mp, sp) = (dir.join("BG.mesh"), dir.join("M.sol"));
+    io::write_medit2(&mp, &mesh)?;
+    io::write_sol(&sp, &Sol::metric(metric))?;
+    Ok((mp, sp))
+}
+
+/// The metric parameters of [`write_speed_case`].
+pub fn speed_case_metric(n: usize, eps: f64) -> LevelSetMetric {
+    LevelSetMetric {
+        eps,
+        hmin: eps,
+        hmax: 0.2,
+        max_aniso: f64::INFINITY,
+        band: 4.0 / (n.max(2) - 1) as f64,
+        grade: 0.3,
+        analytic: true,
+        isotropic: false,
+    }
+}

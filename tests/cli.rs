@@ -1,0 +1,212 @@
+//! The command line: every sample mesh is readable by `info`; every error is one line on stderr
+//! with a non-zero exit status and never a panic.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn anisomesh(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_anisomesh"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs")
+}
+
+fn assert_clean_error(out: &Output, needle: &str) {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "expected failure, got success");
+    assert!(!stderr.contains("panicked"), "panic: {stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    assert!(stderr.contains(needle), "'{needle}' not in: {stderr}");
+}
+
+#[test]
+fn info_reads_every_sample_file() {
+    let mut n = 0;
+    for entry in std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes")).unwrap() {
+        let path = entry.unwrap().path();
+        let out = anisomesh(&["info", path.to_str().unwrap()]);
+        assert!(
+            out.status.success(),
+            "{}: {}",
+            path.display(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            stdout.contains("vertices") || stdout.contains("field"),
+            "{stdout}"
+        );
+        n += 1;
+    }
+    assert!(n >= 5, "only {n} sample files");
+}
+
+#[test]
+fn info_with_metric_reports_edge_lengths() {
+    let out = anisomesh(&[
+        "info",
+        "meshes/square.mesh",
+        "--sol",
+        "meshes/square_metric.sol",
+    ]);
+    assert!(out.status.success());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("edge lengths in [1/sqrt2, sqrt2]"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn errors_are_one_line_and_name_the_problem() {
+    assert_clean_error(
+        &anisomesh(&["info", "no/such/file.mesh"]),
+        "no/such/file.mesh",
+    );
+    assert_clean_error(&anisomesh(&["info", "Cargo.toml"]), "extension");
+    assert_clean_error(
+        &anisomesh(&[
+            "info",
+            "meshes/square_hole.mesh",
+            "--sol",
+            "meshes/square_metric.sol",
+        ]),
+        "vertices",
+    );
+    assert_clean_error(
+        &anisomesh(&[
+            "shape",
+            "--expr",
+            "x^2+(y",
+            "--mesh",
+            "meshes/square.mesh",
+            "-o",
+            "x.sol",
+        ]),
+        "column",
+    );
+    assert_clean_error(
+        &anisomesh(&[
+            "shape",
+            "--name",
+            "teapot",
+            "--mesh",
+            "meshes/square.mesh",
+            "-o",
+            "x.sol",
+        ]),
+        "zalesak",
+    );
+    assert!(!Path::new(env!("CARGO_MANIFEST_DIR")).join("x.sol").exists());
+}
+
+#[test]
+fn convert_and_shape_round_trip() {
+    let dir = std::env::temp_dir().join(format!("anisomesh-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let msh = dir.join("square.msh");
+    let out = anisomesh(&["convert", "meshes/square_hole.mesh", msh.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = anisomesh(&["info", msh.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("vertices      231"));
+    let sol = dir.join("ls.sol");
+    let out = anisomesh(&[
+        "shape",
+        "--name",
+        "circle",
+        "--mesh",
+        msh.to_str().unwrap(),
+        "-o",
+        sol.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&sol).unwrap();
+    assert!(text.contains("SolAtVertices"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 3's targets for the default `anisomesh adapt` run (the Zalesak disk, 004 eq. (6),
+/// hmin 0.001, hmax 0.2): <= 5,000 vertices, Hausdorff <= 5e-4, relative area error <= 5e-5,
+/// >= 95% of edges with metric length in [1/sqrt 2, sqrt 2], mean Q_ani <= 1.10, worst <= 5.
+#[test]
+fn default_adapt_run_meets_the_issue_targets() {
+    let dir = std::env::temp_dir().join(format!("anisomesh-adapt-{}", std::process::id()));
+    let out = anisomesh(&["adapt", "-o", dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    let r: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let num = |k: &str| {
+        r[k].as_f64()
+            .unwrap_or_else(|| panic!("{k} missing in {text}"))
+    };
+    assert!(num("vertices") <= 5000.0, "{text}");
+    assert!(num("hausdorff") <= 5e-4, "{text}");
+    assert!(num("area_rel_error") <= 5e-5, "{text}");
+    assert!(num("edge_length_in_range") >= 0.95, "{text}");
+    assert!(num("q_ani_mean") <= 1.10, "{text}");
+    assert!(num("q_ani_max") <= 5.0, "{text}");
+    for ext in ["mesh", "vtu", "png"] {
+        let f = dir.join(format!("zalesak.{ext}"));
+        assert!(
+            std::fs::metadata(&f)
+                .map(|m| m.len() > 1000)
+                .unwrap_or(false),
+            "{f:?}"
+        );
+    }
+    // The written mesh reads back and passes the checker.
+    let mesh = anisomesh::io::read_mesh(&dir.join("zalesak.mesh")).unwrap();
+    mesh.check().unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn adapt_conforms_to_a_metric_file_and_to_a_level_set_file() {
+    let dir = std::env::temp_dir().join(format!("anisomesh-adapt-sol-{}", std::process::id()));
+    for sol in ["meshes/square_metric.sol", "meshes/square_levelset.sol"] {
+        let out = anisomesh(&[
+            "adapt",
+            "--input",
+            "meshes/square.mesh",
+            "--sol",
+            sol,
+            "-o",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
+        let r: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert!(
+            r["edge_length_in_range"].as_f64().unwrap() >= 0.9,
+            "{sol}: {text}"
+        );
+    }
+    assert_clean_error(
+        &anisomesh(&[
+            "adapt",
+            "--input",
+            "meshes/square_hole.mesh",
+            "--sol",
+            "meshes/square_metric.sol",
+        ]),
+        "vertices",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
