@@ -2,7 +2,8 @@
 //! point (004 §3.5): one revolution in 16 periods of π/8, metric 004 eq. (6) with hmin = 0.001
 //! and stretching 200, metrics of u^n and u^{n+1} intersected each period.
 //!
-//! Usage: `cargo run --release --example zalesak_adapted -- [eps] [fixed-point iterations] [grade] [l2|nodal] [iso]`
+//! Usage: `cargo run --release --example zalesak_adapted -- [eps] [fixed-point iterations] [grade] [l2|nodal] [iso] [compare]
+//! (`ZALESAK_OUT=dir` writes `zalesak.json` and `zalesak.csv` there).`
 
 use anisomesh::advect::{AdvectOptions, Form, Interpolation};
 use anisomesh::bench::zalesak::{run, ZalesakMesh, ZalesakOptions};
@@ -31,6 +32,10 @@ fn main() -> anisomesh::Result<()> {
         },
         periods,
         fixed_point_iterations: fp,
+        out_dir: std::env::var("ZALESAK_OUT")
+            .ok()
+            .map(std::path::PathBuf::from),
+        compare: args.iter().any(|a| a == "compare"),
         advect: AdvectOptions {
             form: if nodal {
                 Form::Nodal

@@ -11,7 +11,8 @@ use anisomesh::advect::{
     enclosed_area, interface_length, AdvectOptions, FieldEvaluator, FootOptions, FootScheme, Form,
     Inflow, Interpolation,
 };
-use anisomesh::bench::zalesak::{SlottedDisk, EXACT_AREA, EXACT_PERIMETER};
+use anisomesh::bench::zalesak::{EXACT_AREA, EXACT_PERIMETER};
+use anisomesh::levelset::shapes::{Shape, Zalesak};
 use anisomesh::{DVec2, GridPattern, Mesh2};
 
 fn main() -> anisomesh::Result<()> {
@@ -21,13 +22,12 @@ fn main() -> anisomesh::Result<()> {
         .unwrap_or(200);
     let lo = DVec2::splat(-2.0);
     let mesh = Mesh2::rectangle(lo, -lo, n, n, GridPattern::UnionJack)?;
-    let shape = SlottedDisk::default();
-    let u0: Vec<f64> = mesh
-        .points
-        .iter()
-        .map(|&p| shape.signed_distance(p))
-        .collect();
-    let (a0, p0) = (enclosed_area(&mesh, &u0), interface_length(&mesh, &u0));
+    let shape = Zalesak::default();
+    let u0: Vec<f64> = mesh.points.iter().map(|&p| shape.distance(p)).collect();
+    let (a0, p0) = (
+        enclosed_area(&mesh, &u0).unwrap(),
+        interface_length(&mesh, &u0).unwrap(),
+    );
     println!(
         "n = {n}: initial P1 representation: area {:+.3e}, perimeter {:+.3e} (relative to exact)",
         (a0 - EXACT_AREA) / EXACT_AREA,
@@ -70,7 +70,10 @@ fn main() -> anisomesh::Result<()> {
                 }
             };
         }
-        let (a, p) = (enclosed_area(&mesh, &u), interface_length(&mesh, &u));
+        let (a, p) = (
+            enclosed_area(&mesh, &u).unwrap(),
+            interface_length(&mesh, &u).unwrap(),
+        );
         println!(
             "  {periods:2} periods, foot {:<38} {:<36} area drift {:+.3e}, perimeter drift {:+.3e}",
             match foot {

@@ -131,7 +131,7 @@ fn mass_correction_restores_the_area() {
     for target in [0.5, 0.63, 0.7] {
         let mut w = u.clone();
         let r = correct_mass(&m, &mut w, target, 1e-14).unwrap();
-        let a = enclosed_area(&m, &w);
+        let a = enclosed_area(&m, &w).unwrap();
         assert!(
             ((a - target) / target).abs() < 1e-12,
             "area {a} vs {target}"

@@ -62,7 +62,7 @@ fn fixed_point_with_anisotropic_adaptation_rotates_a_circle() {
         }
     }
     let exact = std::f64::consts::PI * r * r;
-    let e_area = (enclosed_area(m, u) - exact).abs() / exact;
+    let e_area = (enclosed_area(m, u).unwrap() - exact).abs() / exact;
     println!(
         "vertices {} -> {}, iterations {}, changes {:?}, interface error {e_if:.3e}, area error {e_area:.3e}",
         mesh.n_points(),

@@ -133,3 +133,80 @@ fn convert_and_shape_round_trip() {
     assert!(text.contains("SolAtVertices"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Issue 3's targets for the default `anisomesh adapt` run (the Zalesak disk, 004 eq. (6),
+/// hmin 0.001, hmax 0.2): <= 5,000 vertices, Hausdorff <= 5e-4, relative area error <= 5e-5,
+/// >= 95% of edges with metric length in [1/sqrt 2, sqrt 2], mean Q_ani <= 1.10, worst <= 5.
+#[test]
+fn default_adapt_run_meets_the_issue_targets() {
+    let dir = std::env::temp_dir().join(format!("anisomesh-adapt-{}", std::process::id()));
+    let out = anisomesh(&["adapt", "-o", dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    let r: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let num = |k: &str| {
+        r[k].as_f64()
+            .unwrap_or_else(|| panic!("{k} missing in {text}"))
+    };
+    assert!(num("vertices") <= 5000.0, "{text}");
+    assert!(num("hausdorff") <= 5e-4, "{text}");
+    assert!(num("area_rel_error") <= 5e-5, "{text}");
+    assert!(num("edge_length_in_range") >= 0.95, "{text}");
+    assert!(num("q_ani_mean") <= 1.10, "{text}");
+    assert!(num("q_ani_max") <= 5.0, "{text}");
+    for ext in ["mesh", "vtu", "png"] {
+        let f = dir.join(format!("zalesak.{ext}"));
+        assert!(
+            std::fs::metadata(&f)
+                .map(|m| m.len() > 1000)
+                .unwrap_or(false),
+            "{f:?}"
+        );
+    }
+    // The written mesh reads back and passes the checker.
+    let mesh = anisomesh::io::read_mesh(&dir.join("zalesak.mesh")).unwrap();
+    mesh.check().unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn adapt_conforms_to_a_metric_file_and_to_a_level_set_file() {
+    let dir = std::env::temp_dir().join(format!("anisomesh-adapt-sol-{}", std::process::id()));
+    for sol in ["meshes/square_metric.sol", "meshes/square_levelset.sol"] {
+        let out = anisomesh(&[
+            "adapt",
+            "--input",
+            "meshes/square.mesh",
+            "--sol",
+            sol,
+            "-o",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
+        let r: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert!(
+            r["edge_length_in_range"].as_f64().unwrap() >= 0.9,
+            "{sol}: {text}"
+        );
+    }
+    assert_clean_error(
+        &anisomesh(&[
+            "adapt",
+            "--input",
+            "meshes/square_hole.mesh",
+            "--sol",
+            "meshes/square_metric.sol",
+        ]),
+        "vertices",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -29,7 +29,7 @@
 
 use super::characteristics::{foot, locate_all, FootOptions, Velocity};
 use super::evaluate::{check_field, FieldEvaluator, Inflow, Interpolation};
-use super::interim::{self, DUNAVANT4};
+use super::interim::DUNAVANT4;
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::mesh::Mesh2;
@@ -125,9 +125,25 @@ pub fn pull_back(
         )));
     }
     let rhs = project_rhs(eval, new, map, subdivisions)?;
-    let mass = interim::mass_matrix(new);
+    let mass = crate::fem::p1::mass(new)?;
     let mut u = nodal;
-    interim::pcg(&mass, &rhs, &mut u, cg_tol, 2000)?;
+    let cg = crate::fem::solve::cg(
+        &mass,
+        &rhs,
+        &mut u,
+        &crate::fem::CgOptions {
+            rtol: cg_tol,
+            atol: 0.0,
+            max_iter: 2000,
+            precond: crate::fem::PrecondKind::Jacobi,
+        },
+    )?;
+    if !cg.converged {
+        return Err(Error::NotConverged(format!(
+            "L2 projection: mass-matrix CG residual {:e} after {} iterations",
+            cg.residual, cg.iterations
+        )));
+    }
     check_field(new, &u, "projected field")?;
     Ok(u)
 }

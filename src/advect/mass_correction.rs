@@ -8,8 +8,8 @@
 //! Illinois variant of regula falsi with bisection as safeguard.
 
 use super::evaluate::check_field;
-use super::interim;
 use crate::error::{Error, Result};
+use crate::levelset::interface::enclosed_area;
 use crate::mesh::Mesh2;
 
 /// Outcome of a mass correction.
@@ -25,9 +25,9 @@ pub struct MassCorrection {
 }
 
 /// The exact area of `{u + c < 0}` for a P1 field.
-pub fn shifted_area(mesh: &Mesh2, u: &[f64], c: f64) -> f64 {
+pub fn shifted_area(mesh: &Mesh2, u: &[f64], c: f64) -> Result<f64> {
     let s: Vec<f64> = u.iter().map(|v| v + c).collect();
-    interim::enclosed_area(mesh, &s)
+    enclosed_area(mesh, &s)
 }
 
 /// Shifts `u` in place by the constant `c` such that the area of `{u < 0}` equals `target`
@@ -55,12 +55,12 @@ pub fn correct_mass(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
             (a.min(v), b.max(v))
         });
-    let area_before = interim::enclosed_area(mesh, u);
-    let f = |c: f64| shifted_area(mesh, u, c) - target;
+    let area_before = enclosed_area(mesh, u)?;
+    let f = |c: f64| shifted_area(mesh, u, c).map(|a| a - target);
     // Bracket: f(a) >= 0 >= f(b).
     let span = (umax - umin).max(1e-300);
     let (mut a, mut b) = (-umax - 1e-9 * span, -umin + 1e-9 * span);
-    let (mut fa, mut fb) = (f(a), f(b));
+    let (mut fa, mut fb) = (f(a)?, f(b)?);
     let mut evals = 2;
     // Start from the bracket [c0 - d, c0 + d] around c = 0 when it holds, to save evaluations.
     let f0 = area_before - target;
@@ -93,11 +93,11 @@ pub fn correct_mass(
         }
         if x == a || x == b || (b - a) <= 4.0 * f64::EPSILON * (a.abs().max(b.abs()) + 1e-300) {
             c = x;
-            fc = f(x);
+            fc = f(x)?;
             evals += 1;
             break;
         }
-        let fx = f(x);
+        let fx = f(x)?;
         evals += 1;
         c = x;
         fc = fx;

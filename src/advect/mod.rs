@@ -24,12 +24,12 @@ pub use fixed_point::{advance_period, Adapter, FixedPointOptions, IdentityAdapte
 pub use galerkin::{advect, AdvectOptions, Form};
 pub use mass_correction::{correct_mass, MassCorrection};
 
-/// Exact area of `{u < 0}` of a P1 field (until `levelset::interface::enclosed_area` lands).
-pub fn enclosed_area(mesh: &crate::Mesh2, u: &[f64]) -> f64 {
-    interim::enclosed_area(mesh, u)
+/// Exact area of `{u < 0}` of a P1 field ([`crate::levelset::interface::enclosed_area`]).
+pub fn enclosed_area(mesh: &crate::Mesh2, u: &[f64]) -> crate::Result<f64> {
+    crate::levelset::interface::enclosed_area(mesh, u)
 }
 
-/// Exact length of the zero level of a P1 field (until `levelset::interface` lands).
-pub fn interface_length(mesh: &crate::Mesh2, u: &[f64]) -> f64 {
-    interim::interface_length(mesh, u)
+/// Length of the zero level of a P1 field ([`crate::levelset::interface::interface_length`]).
+pub fn interface_length(mesh: &crate::Mesh2, u: &[f64]) -> crate::Result<f64> {
+    crate::levelset::interface::interface_length(mesh, u)
 }

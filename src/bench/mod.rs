@@ -1,5 +1,6 @@
 //! Benchmark flows: one file per benchmark, each returning a typed report.
 
+pub mod adapt_run;
 pub mod convergence;
 pub mod couette;
 pub mod peers;

@@ -14,7 +14,9 @@ use crate::advect::adapter::LevelSetAdapter;
 use crate::advect::fixed_point::{advance_period, Adapter, FixedPointOptions};
 use crate::advect::{self, AdvectOptions, Rotation};
 use crate::error::{Error, Result};
-use crate::geom::{point_segment_distance, DVec2};
+use crate::geom::DVec2;
+use crate::levelset::interface::{extract_zero_level, interface_distance, InterfaceError};
+use crate::levelset::shapes::{Shape, Zalesak};
 use crate::mesh::{GridPattern, Mesh2};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -26,90 +28,6 @@ pub const EXACT_AREA: f64 = 0.713_542_476_0;
 pub const EXACT_PERIMETER: f64 = 4.334_076_662_9;
 /// The paper's values (004 §5.1, no mass correction): initial/final area and perimeter.
 pub const PAPER: [f64; 4] = [0.71316, 0.706, 4.3275, 4.2985];
-
-/// The slotted disk (a private stand-in until `levelset::shapes::Zalesak` lands).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlottedDisk {
-    pub centre: DVec2,
-    pub radius: f64,
-    pub half_width: f64,
-    pub slot_top: f64,
-}
-
-impl Default for SlottedDisk {
-    fn default() -> Self {
-        SlottedDisk {
-            centre: DVec2::new(0.0, 0.75),
-            radius: 0.5,
-            half_width: 0.06,
-            slot_top: 0.85,
-        }
-    }
-}
-
-impl SlottedDisk {
-    fn slot_bottom(&self) -> f64 {
-        self.centre.y - (self.radius * self.radius - self.half_width * self.half_width).sqrt()
-    }
-
-    fn segments(&self) -> [[DVec2; 2]; 3] {
-        let (w, y0, top) = (self.half_width, self.slot_bottom(), self.slot_top);
-        let cx = self.centre.x;
-        [
-            [DVec2::new(cx - w, y0), DVec2::new(cx - w, top)],
-            [DVec2::new(cx - w, top), DVec2::new(cx + w, top)],
-            [DVec2::new(cx + w, top), DVec2::new(cx + w, y0)],
-        ]
-    }
-
-    /// Exact signed distance to the boundary (negative inside).
-    pub fn signed_distance(&self, p: DVec2) -> f64 {
-        let d = p - self.centre;
-        let r = d.length();
-        let alpha = (self.half_width / self.radius).asin();
-        let phi = d.y.atan2(d.x);
-        let mut dist = if r > 0.0 && (phi + std::f64::consts::FRAC_PI_2).abs() >= alpha {
-            (r - self.radius).abs()
-        } else {
-            let y0 = self.slot_bottom();
-            let e0 = DVec2::new(self.centre.x - self.half_width, y0);
-            let e1 = DVec2::new(self.centre.x + self.half_width, y0);
-            (p - e0).length().min((p - e1).length())
-        };
-        for [a, b] in self.segments() {
-            dist = dist.min(point_segment_distance(p, a, b).0);
-        }
-        let in_slot = (p.x - self.centre.x).abs() <= self.half_width && p.y <= self.slot_top;
-        if r < self.radius && !in_slot {
-            -dist
-        } else {
-            dist
-        }
-    }
-
-    /// `n` points spread along the boundary (for interface distances).
-    pub fn boundary_samples(&self, n: usize) -> Vec<DVec2> {
-        let alpha = (self.half_width / self.radius).asin();
-        let arc = self.radius * (2.0 * std::f64::consts::PI - 2.0 * alpha);
-        let segs = self.segments();
-        let total = arc + segs.iter().map(|[a, b]| (*b - *a).length()).sum::<f64>();
-        let mut out = Vec::with_capacity(n + 8);
-        let n_arc = ((n as f64) * arc / total).ceil() as usize;
-        for i in 0..=n_arc {
-            let phi = -std::f64::consts::FRAC_PI_2
-                + alpha
-                + (2.0 * std::f64::consts::PI - 2.0 * alpha) * i as f64 / n_arc as f64;
-            out.push(self.centre + self.radius * DVec2::new(phi.cos(), phi.sin()));
-        }
-        for [a, b] in segs {
-            let m = ((n as f64) * (b - a).length() / total).ceil() as usize;
-            for i in 0..=m {
-                out.push(a + (b - a) * (i as f64 / m as f64));
-            }
-        }
-        out
-    }
-}
 
 /// Which meshes carry the level set.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -196,10 +114,9 @@ pub struct ZalesakReport {
     pub area_final: f64,
     pub perimeter_initial: f64,
     pub perimeter_final: f64,
-    /// Max and mean distance from the final zero level to the exact initial boundary, and the
-    /// max distance from the exact boundary to the final zero level (their max: Hausdorff).
+    /// Max distance from the final zero level to the exact initial boundary, and from the
+    /// exact boundary to the final zero level (their max: the sampled Hausdorff distance).
     pub interface_to_exact_max: f64,
-    pub interface_to_exact_mean: f64,
     pub exact_to_interface_max: f64,
     pub vertices_mean: f64,
     pub vertices_max: usize,
@@ -234,14 +151,14 @@ impl ZalesakReport {
              {:>10} {:>14.10} {:>14.10} {:>14}\n\
              {:>10} {:>14.10} {:>14.10} {:>14}\n\
              {:>10} {:>14.10} {:>14.10} {:>14}\n\
-             final relative error: area {:+.3e}, perimeter {:+.3e}; interface distance max {:.2e} mean {:.2e} (exact->interface {:.2e})\n",
+             final relative error: area {:+.3e}, perimeter {:+.3e}; interface distance max {:.2e} (exact->interface {:.2e})\n",
             self.mesh, self.seconds, self.adapt_seconds, self.advect_seconds, self.vertices_mean, self.vertices_max,
             "", "measured", "exact", "paper",
             "area0", self.area_initial, EXACT_AREA, PAPER[0],
             "area1", self.area_final, EXACT_AREA, PAPER[1],
             "perim0", self.perimeter_initial, EXACT_PERIMETER, PAPER[2],
             "perim1", self.perimeter_final, EXACT_PERIMETER, PAPER[3],
-            ea, ep, self.interface_to_exact_max, self.interface_to_exact_mean, self.exact_to_interface_max,
+            ea, ep, self.interface_to_exact_max, self.exact_to_interface_max,
         );
         for c in [&self.compare_uniform, &self.compare_isotropic]
             .into_iter()
@@ -254,29 +171,11 @@ impl ZalesakReport {
     }
 }
 
-/// Distances between the zero level of `u` and the exact boundary: (max, mean) from the
-/// discrete interface to the shape, and max from the shape's boundary samples to the interface.
-pub fn interface_distances(mesh: &Mesh2, u: &[f64], shape: &SlottedDisk) -> (f64, f64, f64) {
-    let segs = advect::interim::zero_level_segments(mesh, u);
-    let (mut mx, mut sum, mut len) = (0.0f64, 0.0, 0.0);
-    for [a, b] in &segs {
-        let l = (*b - *a).length();
-        for q in [*a, *b, 0.5 * (*a + *b)] {
-            mx = mx.max(shape.signed_distance(q).abs());
-        }
-        sum += l * shape.signed_distance(0.5 * (*a + *b)).abs();
-        len += l;
-    }
-    let back = shape
-        .boundary_samples(2000)
-        .iter()
-        .map(|&p| {
-            segs.iter()
-                .map(|[a, b]| point_segment_distance(p, *a, *b).0)
-                .fold(f64::INFINITY, f64::min)
-        })
-        .fold(0.0f64, f64::max);
-    (mx, sum / len.max(1e-300), back)
+/// Distances between the zero level of `u` and the exact boundary
+/// ([`crate::levelset::interface::interface_distance`], 4 samples per segment).
+pub fn interface_distances(mesh: &Mesh2, u: &[f64], shape: &Zalesak) -> Result<InterfaceError> {
+    let lines = extract_zero_level(mesh, u)?;
+    Ok(interface_distance(&lines, shape, 4))
 }
 
 /// Runs the Zalesak rotation: on a fixed uniform mesh, or with anisotropic (or isotropic)
@@ -305,7 +204,7 @@ pub fn run(opts: &ZalesakOptions) -> Result<ZalesakReport> {
 /// adapter is given (the level set is re-evaluated exactly at the vertices after each round).
 fn initial_mesh(
     n: usize,
-    shape: &SlottedDisk,
+    shape: &Zalesak,
     adapter: Option<&mut (dyn Adapter + '_)>,
     rounds: usize,
 ) -> Result<Mesh2> {
@@ -313,11 +212,7 @@ fn initial_mesh(
     let mut mesh = Mesh2::rectangle(lo, -lo, n, n, GridPattern::UnionJack)?;
     if let Some(a) = adapter {
         for _ in 0..rounds {
-            let u: Vec<f64> = mesh
-                .points
-                .iter()
-                .map(|&p| shape.signed_distance(p))
-                .collect();
+            let u: Vec<f64> = mesh.points.iter().map(|&p| shape.distance(p)).collect();
             mesh = a.adapt(&mesh, &[u])?;
         }
     }
@@ -337,7 +232,7 @@ pub fn run_with_adapter(
         )));
     }
     let start = Instant::now();
-    let shape = SlottedDisk::default();
+    let shape = Zalesak::default();
     let n = match opts.mesh {
         ZalesakMesh::Uniform { n } => n,
         ZalesakMesh::Adapted { .. } => 40,
@@ -345,13 +240,9 @@ pub fn run_with_adapter(
     let mut mesh = initial_mesh(n, &shape, adapter.as_deref_mut(), 4)?;
     let mut adapt_seconds = start.elapsed().as_secs_f64();
     let mut advect_seconds = 0.0;
-    let mut u: Vec<f64> = mesh
-        .points
-        .iter()
-        .map(|&p| shape.signed_distance(p))
-        .collect();
-    let area_initial = advect::enclosed_area(&mesh, &u);
-    let perimeter_initial = advect::interface_length(&mesh, &u);
+    let mut u: Vec<f64> = mesh.points.iter().map(|&p| shape.distance(p)).collect();
+    let area_initial = advect::enclosed_area(&mesh, &u)?;
+    let perimeter_initial = advect::interface_length(&mesh, &u)?;
     let v = Rotation { omega: 1.0 };
     let total = 2.0 * std::f64::consts::PI * opts.revolutions;
     let steps = (opts.periods as f64 * opts.revolutions).round().max(1.0) as usize;
@@ -403,8 +294,8 @@ pub fn run_with_adapter(
         series.push(ZalesakSample {
             period: k + 1,
             time: t1,
-            area: advect::enclosed_area(&mesh, &u),
-            perimeter: advect::interface_length(&mesh, &u),
+            area: advect::enclosed_area(&mesh, &u)?,
+            perimeter: advect::interface_length(&mesh, &u)?,
             vertices: mesh.n_points(),
             fixed_point_iterations: iters,
             l1_change,
@@ -412,10 +303,11 @@ pub fn run_with_adapter(
     }
     // After a whole number of revolutions the exact interface is the initial one.
     let turns = opts.revolutions.fract().abs() < 1e-12;
-    let (imax, imean, back) = if turns {
-        interface_distances(&mesh, &u, &shape)
+    let (imax, back) = if turns {
+        let e = interface_distances(&mesh, &u, &shape)?;
+        (e.to_exact_max, e.from_exact_max)
     } else {
-        (f64::NAN, f64::NAN, f64::NAN)
+        (f64::NAN, f64::NAN)
     };
     let last = series.last().cloned().unwrap_or_else(|| series[0].clone());
     let mut report = ZalesakReport {
@@ -425,7 +317,6 @@ pub fn run_with_adapter(
         perimeter_initial,
         perimeter_final: last.perimeter,
         interface_to_exact_max: imax,
-        interface_to_exact_mean: imean,
         exact_to_interface_max: back,
         vertices_mean: verts.iter().sum::<usize>() as f64 / verts.len() as f64,
         vertices_max: verts.iter().copied().max().unwrap_or(0),
@@ -478,7 +369,7 @@ fn isotropic_hmin_for(
     stretching: f64,
     opts: &ZalesakOptions,
 ) -> Result<f64> {
-    let shape = SlottedDisk::default();
+    let shape = Zalesak::default();
     let count = |h: f64| -> Result<f64> {
         let metric = LevelSetMetric {
             hmin: h,
@@ -540,18 +431,14 @@ mod tests {
 
     #[test]
     fn slotted_disk_distance_and_measures() {
-        let s = SlottedDisk::default();
-        assert!((s.signed_distance(DVec2::new(0.0, 0.75 + 0.5)) - 0.0).abs() < 1e-15);
-        assert!((s.signed_distance(DVec2::new(0.0, 0.5)) - 0.06).abs() < 1e-15);
-        assert!((s.signed_distance(DVec2::new(0.3, 0.75)) + 0.2).abs() < 1e-15);
-        assert!((s.signed_distance(DVec2::new(0.0, 0.9)) + 0.05).abs() < 1e-15);
+        let s = Zalesak::default();
         // Fine grid: the P1 area and perimeter approach the exact values.
         let lo = DVec2::new(-0.6, 0.15);
         let hi = DVec2::new(0.6, 1.35);
         let m = Mesh2::rectangle(lo, hi, 600, 600, GridPattern::UnionJack).unwrap();
-        let u: Vec<f64> = m.points.iter().map(|&p| s.signed_distance(p)).collect();
-        let a = advect::enclosed_area(&m, &u);
-        let p = advect::interface_length(&m, &u);
+        let u: Vec<f64> = m.points.iter().map(|&p| s.distance(p)).collect();
+        let a = advect::enclosed_area(&m, &u).unwrap();
+        let p = advect::interface_length(&m, &u).unwrap();
         assert!((a - EXACT_AREA).abs() < 2e-5, "area {a}");
         // Measured at h = 0.002: area error ~1e-5, perimeter -8e-4 (corners cut by P1).
         assert!((p - EXACT_PERIMETER).abs() < 1.5e-3, "perimeter {p}");

@@ -1,6 +1,7 @@
 //! Command definitions (clap) and dispatch. Each command lives in its own file and only calls
 //! the library's public API.
 
+mod adapt;
 mod convert;
 mod info;
 mod shape;
@@ -19,6 +20,9 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Adapts a mesh to a shape, an expression, a level set or a metric (default: the Zalesak
+    /// disk at the paper's setting); writes .mesh, .vtu, .png and report.json.
+    Adapt(adapt::AdaptArgs),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -62,6 +66,7 @@ pub fn run(cli: Cli) -> Result<()> {
             mesh,
             output,
         }) => shape::run(name.as_deref(), expr.as_deref(), &mesh, &output),
-        None => info::run(std::path::Path::new("meshes/square.mesh"), None),
+        Some(Command::Adapt(a)) => adapt::run(a),
+        None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }
