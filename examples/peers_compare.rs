@@ -16,7 +16,8 @@
 //! `peers_speed.csv`.
 //!
 //! Usage: `cargo run --release --example peers_compare -- [OUT_DIR] [--sweep-only|--speed-only]`
-//! (default `OUT_DIR` = `target/peers`). Peers missing on `PATH` are reported and skipped.
+//! (default `OUT_DIR` = `target/peers`). Peers missing on `PATH` are reported and skipped;
+//! `ANISOMESH_PEERS_KINDS=mmg2d-metric,bamg-metric,...` restricts the sweep to those adapters.
 
 use anisomesh::adapt::{adapt, AdaptOptions};
 use anisomesh::bench::peers::{
@@ -60,12 +61,14 @@ fn speed_case(out: &std::path::Path, n: usize, eps: f64) -> anisomesh::Result<Ve
     let target = speed_case_metric(n, eps);
     let mut rows = Vec::new();
 
-    // MMG on the same files.
-    match find_program("mmg2d_O3") {
+    // MMG on the same files (skipped when `ANISOMESH_PEERS_KINDS` leaves out mmg2d-metric).
+    let mmg_wanted = std::env::var("ANISOMESH_PEERS_KINDS")
+        .map_or(true, |l| l.split(',').any(|s| s.trim() == "mmg2d-metric"));
+    match find_program("mmg2d_O3").filter(|_| mmg_wanted) {
         None => rows.push(PeerResult::unavailable(
             PeerKind::Mmg2dMetric,
             eps,
-            "mmg2d_O3 not found on PATH",
+            "mmg2d_O3 not found on PATH (or not selected)",
         )),
         Some(exe) => {
             let out_mesh = dir.join("mmg_out.mesh");
@@ -90,6 +93,8 @@ fn speed_case(out: &std::path::Path, n: usize, eps: f64) -> anisomesh::Result<Ve
             rows.push(r);
         }
     }
+    // Written now too, so that the MMG row survives an interrupted run of ours.
+    write_csv(&out.join("peers_speed.csv"), &rows)?;
     // Ours: the equivalent of `anisomesh adapt --input BG.mesh --sol M.sol`, on a worker thread
     // with a time budget (`ANISOMESH_PEERS_BUDGET` seconds, default 1800): a run past it is
     // reported as such and the process ends after writing the CSV.
@@ -181,7 +186,15 @@ fn main() -> anisomesh::Result<()> {
             "sweep: background {0}x{0}, {1} fixed-point iterations per peer",
             opts.background, opts.iterations
         );
-        let results = sweep(&PeerKind::ALL, eps, &opts, &out)?;
+        // `ANISOMESH_PEERS_KINDS=mmg2d-metric,bamg-metric` restricts the sweep (default: all).
+        let kinds: Vec<PeerKind> = match std::env::var("ANISOMESH_PEERS_KINDS") {
+            Ok(list) => PeerKind::ALL
+                .into_iter()
+                .filter(|k| list.split(',').any(|s| s.trim() == k.slug()))
+                .collect(),
+            Err(_) => PeerKind::ALL.to_vec(),
+        };
+        let results = sweep(&kinds, eps, &opts, &out)?;
         for r in &results {
             print(r);
         }

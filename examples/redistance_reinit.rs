@@ -1,6 +1,7 @@
 //! Runs the redistancing experiments of 003 §8 (torus tables 8.1–8.3, the 2D circle analogue,
 //! and the repeated-redistancing volume test of Fig. 8.4) and writes `reinit.json`.
-//! `cargo run --release --example redistance_reinit -- [max_level_3d] [max_level_2d] [volume_level] [out_dir]`
+//! `cargo run --release --example redistance_reinit -- [max_level_3d] [max_level_2d] [volume_level] [out_dir] [reps] [k]`
+//! (a level of 0 or below 3 skips that part; `k` = 0 runs both degrees).
 
 use anisomesh::bench::reinit::{run, ReinitOptions};
 
@@ -17,6 +18,11 @@ fn main() -> anisomesh::Result<()> {
         levels_2d: (3..=l2).collect(),
         volume_levels: if lv > 0 { vec![lv] } else { vec![] },
         out_dir: Some(std::env::args().nth(4).unwrap_or_else(|| ".".into()).into()),
+        volume_reps: arg(5, 100) as usize,
+        degrees: match arg(6, 0) {
+            0 => vec![1, 2],
+            k => vec![k as usize],
+        },
         ..ReinitOptions::default()
     };
     let t0 = std::time::Instant::now();
