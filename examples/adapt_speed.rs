@@ -3,7 +3,8 @@
 //! evaluation at the vertices, gradation 2, adaptation), for `eps = hmin` = 1e-3, 1e-4, 1e-5.
 //! Prints the output size, the time and the vertices per second; single-threaded if run with
 //! `RAYON_NUM_THREADS=1`. Measured (one thread, busy 2-core machine): 2.5e3 vertices in 0.8 s,
-//! 1.4e4 in 3.5 s, 5.1e4 in 17.5 s — about 3e3 vertices/s, far from the 1.3e5/s target.
+//! 1.4e4 in 3.5 s, 5.1e4 in 17.5 s (eps 3e-5), 2.2e5 in 171 s (eps 1e-5, worst Q_ani 1e3):
+//! 1e3–4e3 vertices/s and superlinear, far from the 1.3e5/s target.
 //!
 //! Usage: `cargo run --release --example adapt_speed -- [eps ...]`
 

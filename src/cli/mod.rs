@@ -3,6 +3,7 @@
 
 mod adapt;
 mod convert;
+mod flows;
 mod info;
 mod shape;
 
@@ -23,6 +24,10 @@ enum Command {
     /// Adapts a mesh to a shape, an expression, a level set or a metric (default: the Zalesak
     /// disk at the paper's setting); writes .mesh, .vtu, .png and report.json.
     Adapt(adapt::AdaptArgs),
+    /// The Zalesak slotted-disk rotation (004 §5.1): area and perimeter after one revolution.
+    Zalesak(flows::ZalesakArgs),
+    /// The level-set redistancing experiments of 003 §8 (tables 8.1-8.4, volume drift).
+    Reinit(flows::ReinitArgs),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -67,6 +72,8 @@ pub fn run(cli: Cli) -> Result<()> {
             output,
         }) => shape::run(name.as_deref(), expr.as_deref(), &mesh, &output),
         Some(Command::Adapt(a)) => adapt::run(a),
+        Some(Command::Zalesak(a)) => flows::zalesak(a),
+        Some(Command::Reinit(a)) => flows::reinit(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

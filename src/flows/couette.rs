@@ -59,13 +59,25 @@ impl CouetteCase {
     /// Solves the case on `mesh` (boundary labels 1..4 all Dirichlet) and fits a rigid motion
     /// inside the disk.
     pub fn solve(&self, mesh: &Mesh2, solver: StokesSolver) -> Result<CouetteResult> {
-        let shear = |p: DVec2| DVec2::new(2.0 * (p.y - 0.5), 0.0);
-        let mut problem = StokesProblem::new(mesh).viscosity(Viscosity::TwoPhase {
+        let viscosity = Viscosity::TwoPhase {
             phi: self.level_set(mesh),
             mu_in: self.mu_in,
             mu_out: self.mu_out,
             width: self.width,
-        });
+        };
+        self.solve_with(mesh, viscosity, solver)
+    }
+
+    /// As [`CouetteCase::solve`] with a given viscosity (e.g. [`Viscosity::PerElement`] from the
+    /// sub-domain labels of a body-fitted mesh, whose interface vertices have `φ ≈ 0`).
+    pub fn solve_with(
+        &self,
+        mesh: &Mesh2,
+        viscosity: Viscosity,
+        solver: StokesSolver,
+    ) -> Result<CouetteResult> {
+        let shear = |p: DVec2| DVec2::new(2.0 * (p.y - 0.5), 0.0);
+        let mut problem = StokesProblem::new(mesh).viscosity(viscosity);
         for label in 1..=4 {
             problem = problem.dirichlet(label, &shear);
         }

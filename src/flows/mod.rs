@@ -2,9 +2,11 @@
 
 pub mod couette;
 pub mod stokes;
+pub mod streamlines;
 
 pub use couette::{CouetteCase, CouetteResult};
 pub use stokes::{
     rigid_motion_fit, stokes_errors, RigidFit, StokesProblem, StokesReport, StokesSolution,
     StokesSolver, Viscosity,
 };
+pub use streamlines::{streamline, StreamlineOptions};
