@@ -19,7 +19,12 @@ fn main() -> anisomesh::Result<()> {
     let n: usize = std::env::args()
         .nth(1)
         .and_then(|s| s.parse().ok())
-        .unwrap_or(200);
+        // ANISOMESH_QUICK=1 (CI): a coarse grid.
+        .unwrap_or(if std::env::var_os("ANISOMESH_QUICK").is_some() {
+            60
+        } else {
+            200
+        });
     let lo = DVec2::splat(-2.0);
     let mesh = Mesh2::rectangle(lo, -lo, n, n, GridPattern::UnionJack)?;
     let shape = Zalesak::default();

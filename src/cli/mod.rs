@@ -28,6 +28,10 @@ enum Command {
     Zalesak(flows::ZalesakArgs),
     /// The level-set redistancing experiments of 003 §8 (tables 8.1-8.4, volume drift).
     Reinit(flows::ReinitArgs),
+    /// Interface error versus vertex count: anisotropic, isotropic-adapted and uniform meshes.
+    Convergence(flows::ConvergenceArgs),
+    /// The two-phase Couette Stokes flow (004 §5.1) on an adapted (or fitted) mesh.
+    Couette(flows::CouetteArgs),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -74,6 +78,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Adapt(a)) => adapt::run(a),
         Some(Command::Zalesak(a)) => flows::zalesak(a),
         Some(Command::Reinit(a)) => flows::reinit(a),
+        Some(Command::Convergence(a)) => flows::convergence(a),
+        Some(Command::Couette(a)) => flows::couette(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }
