@@ -23,7 +23,13 @@ fn main() -> anisomesh::Result<()> {
         levels_3d: (3..=l3).collect(),
         levels_2d: (3..=l2).collect(),
         volume_levels: if lv > 0 { vec![lv] } else { vec![] },
-        out_dir: Some(std::env::args().nth(4).unwrap_or_else(|| ".".into()).into()),
+        // Output directory: the 4th argument, else a temporary directory (never the source tree).
+        out_dir: Some(
+            std::env::args()
+                .nth(4)
+                .map(std::path::PathBuf::from)
+                .unwrap_or_else(|| std::env::temp_dir().join("anisomesh-reinit")),
+        ),
         volume_reps: arg(5, 100) as usize,
         degrees: match arg(6, 0) {
             0 => vec![1, 2],
