@@ -143,6 +143,20 @@ pub struct AdaptReport {
     pub seconds: f64,
 }
 
+impl AdaptReport {
+    /// Adds the counts, passes and time of `other` (one more adaptation round) to `self`;
+    /// `converged` is left to the caller, whose stopping rule decides it.
+    pub fn absorb(&mut self, other: &AdaptReport) {
+        self.cycles += other.cycles;
+        self.splits += other.splits;
+        self.collapses += other.collapses;
+        self.flips += other.flips;
+        self.moves += other.moves;
+        self.passes.extend(other.passes.iter().cloned());
+        self.seconds += other.seconds;
+    }
+}
+
 /// Checks the inputs of [`adapt`]: a valid mesh, one SPD metric per vertex, fields of the right
 /// length without NaN.
 pub fn validate_inputs(mesh: &Mesh2, metric: &[Sym2], fields: &[Vec<f64>]) -> Result<()> {

@@ -88,12 +88,7 @@ pub fn adapt_to_shape(
         }
         let mut fields = vec![u];
         let rep = adapt(&mut mesh, &mut metric, &mut fields, source, &opts.adapt)?;
-        total.cycles += rep.cycles;
-        total.splits += rep.splits;
-        total.collapses += rep.collapses;
-        total.flips += rep.flips;
-        total.moves += rep.moves;
-        total.passes.extend(rep.passes);
+        total.absorb(&rep);
         let nv = mesh.n_points();
         let change = (nv as f64 - prev_n as f64).abs() / nv.max(1) as f64;
         prev_n = nv;

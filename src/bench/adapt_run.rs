@@ -251,12 +251,7 @@ fn adapt_shape(
                     None,
                     &AdaptOptions::default(),
                 )?;
-                total.cycles += rep.cycles;
-                total.splits += rep.splits;
-                total.collapses += rep.collapses;
-                total.flips += rep.flips;
-                total.moves += rep.moves;
-                total.seconds += rep.seconds;
+                total.absorb(&rep);
                 total.converged = rep.converged;
                 let change = (mesh.n_points() as f64 - before as f64).abs() / before as f64;
                 if change < 0.02 {
