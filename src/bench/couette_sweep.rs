@@ -4,9 +4,9 @@
 //! viscosity rule).
 //!
 //! Adapted family: one scale `s` for all sizes of the eq. (6) metric, `ε = 1e-4 s²`,
-//! `hmin = band = 5e-4 s`, `hmax = 0.04 s`, and the growth rate of the sizes away from the
-//! interface `grade = s` (sizes `h ≈ s d` at distance `d`: without it the flow near the disk
-//! is not refined and ω stalls near 1e-4). The default run is `s = 1`; the mesh sizes scale
+//! `hmin = band = 1e-3 s`, `hmax = 0.05 s`, and the growth rate of the sizes away from the
+//! interface `grade = 0.3 s` (sizes `h ≈ 0.3 s d` at distance `d`: with a fixed grade the flow
+//! near the disk is not refined and ω stalls near 1e-4). The default run is `s = 1`; the mesh sizes scale
 //! like `s`, so the vertex count roughly like `1/s²`. Fitted family: edge length `h` on the circle,
 //! `hmax = 8 h` (at most 0.1).
 
@@ -29,10 +29,10 @@ pub struct SweepRow {
 pub fn adapted_options(s: f64, interface: InterfaceViscosity) -> CouetteOptions {
     CouetteOptions {
         eps: 1e-4 * s * s,
-        hmin: 5e-4 * s,
-        band: 5e-4 * s,
-        hmax: 0.04 * s,
-        grade: s,
+        hmin: 1e-3 * s,
+        band: 1e-3 * s,
+        hmax: 0.05 * s,
+        grade: 0.3 * s,
         interface,
         figures: false,
         ..CouetteOptions::default()
