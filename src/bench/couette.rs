@@ -88,6 +88,12 @@ pub struct CouetteReport {
     /// Meshing (adaptation or CDT), solve, and total wall-clock seconds (figures excluded).
     pub mesh_seconds: f64,
     pub solve_seconds: f64,
+    /// Parts of `solve_seconds`: block assembly, Cholesky factorisations, Uzawa iteration.
+    pub assembly_seconds: f64,
+    pub factor_seconds: f64,
+    pub uzawa_seconds: f64,
+    /// Entries of the Cholesky factor of the velocity block.
+    pub factor_nnz: usize,
     pub seconds: f64,
     pub options: CouetteOptions,
 }
@@ -186,6 +192,10 @@ pub fn run(opts: &CouetteOptions) -> Result<CouetteReport> {
         converged: res.report.converged,
         mesh_seconds,
         solve_seconds: seconds - mesh_seconds,
+        assembly_seconds: res.report.assembly_seconds,
+        factor_seconds: res.report.factor_seconds,
+        uzawa_seconds: res.report.uzawa_seconds,
+        factor_nnz: res.report.factor_nnz,
         seconds,
         options: opts.clone(),
     };

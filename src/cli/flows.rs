@@ -5,18 +5,58 @@ use anisomesh::Result;
 use clap::Args;
 use std::path::PathBuf;
 
-/// Options of `anisomesh zalesak` (defaults: 004 §5.1).
+/// Options of `anisomesh zalesak` (defaults: 004 §5.1 and the tuned metric of
+/// `bench::zalesak::ZalesakOptions::default`).
 #[derive(Debug, Args)]
 pub struct ZalesakArgs {
     /// Also run a uniform mesh and an isotropic adapted mesh of similar vertex count.
     #[arg(long)]
     compare: bool,
+    /// Measure the error sources separately (representation, feet, transfer, redistancing).
+    #[arg(long)]
+    sources: bool,
     /// Restore the initial area after each period (004 §5.1 mass correction).
     #[arg(long)]
     mass_correction: bool,
+    /// Geometric redistancing (004 §2.2) after each period.
+    #[arg(long)]
+    redistance: bool,
     /// Periods per revolution (16 = steps of pi/8).
     #[arg(long, default_value_t = 16)]
     periods: usize,
+    /// Smallest mesh size.
+    #[arg(long)]
+    hmin: Option<f64>,
+    /// hmax / hmin.
+    #[arg(long)]
+    stretching: Option<f64>,
+    /// Interface error bound of 004 eq. (6).
+    #[arg(long)]
+    eps: Option<f64>,
+    /// Half-width of the band where eq. (6) applies.
+    #[arg(long)]
+    band: Option<f64>,
+    /// Growth rate of the sizes outside the band.
+    #[arg(long)]
+    grade: Option<f64>,
+    /// Isotropic adaptation instead of anisotropic.
+    #[arg(long)]
+    isotropic: bool,
+    /// A fixed uniform n x n mesh instead of adaptation.
+    #[arg(long)]
+    uniform: Option<usize>,
+    /// Maximal fixed-point iterations per period.
+    #[arg(long)]
+    fixed_point_iterations: Option<usize>,
+    /// Fixed-point tolerance on the mean L1 change of u^{n+1}.
+    #[arg(long)]
+    fixed_point_tol: Option<f64>,
+    /// Adaptations of the initial mesh.
+    #[arg(long)]
+    initial_rounds: Option<usize>,
+    /// Split/collapse cycle cap of each adaptation.
+    #[arg(long)]
+    max_cycles: Option<usize>,
     /// Output directory (zalesak.json, zalesak.csv, figures).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -24,15 +64,49 @@ pub struct ZalesakArgs {
 
 /// Runs the Zalesak rotation and prints its table.
 pub fn zalesak(a: ZalesakArgs) -> Result<()> {
+    let d = zalesak::ZalesakOptions::default();
+    let (mut hmin, mut stretching) = match d.mesh {
+        zalesak::ZalesakMesh::Adapted {
+            hmin, stretching, ..
+        } => (hmin, stretching),
+        zalesak::ZalesakMesh::Uniform { .. } => (1e-3, 200.0),
+    };
+    hmin = a.hmin.unwrap_or(hmin);
+    stretching = a.stretching.unwrap_or(stretching);
+    let mut metric = d.metric;
+    metric.eps = a.eps.unwrap_or(metric.eps);
+    metric.band = a.band.unwrap_or(metric.band);
+    metric.grade = a.grade.unwrap_or(metric.grade);
+    let mut adapt = d.adapt.clone();
+    adapt.max_cycles = a.max_cycles.unwrap_or(adapt.max_cycles);
     let opts = zalesak::ZalesakOptions {
+        mesh: match a.uniform {
+            Some(n) => zalesak::ZalesakMesh::Uniform { n },
+            None => zalesak::ZalesakMesh::Adapted {
+                hmin,
+                stretching,
+                isotropic: a.isotropic,
+            },
+        },
+        metric,
+        adapt,
+        initial_rounds: a.initial_rounds.unwrap_or(d.initial_rounds),
+        fixed_point_iterations: a.fixed_point_iterations.unwrap_or(d.fixed_point_iterations),
+        fixed_point_tol: a.fixed_point_tol.unwrap_or(d.fixed_point_tol),
         compare: a.compare,
+        sources: a.sources,
+        redistance: a.redistance,
         mass_correction: a.mass_correction,
         periods: a.periods,
         out_dir: Some(a.output.clone()),
-        ..zalesak::ZalesakOptions::default()
+        ..d
     };
     let r = zalesak::run(&opts)?;
     print!("{}", r.summary());
+    println!(
+        "fixed-point iterations per period: {:?}",
+        r.fixed_point_iterations
+    );
     println!("wrote {}", a.output.display());
     Ok(())
 }

@@ -2,6 +2,7 @@
 
 pub mod couette;
 pub mod stokes;
+mod stokes_uzawa;
 pub mod streamlines;
 
 pub use couette::{CouetteCase, CouetteResult};
