@@ -164,6 +164,7 @@ pub fn convergence(a: ConvergenceArgs) -> Result<()> {
         points: a.points,
         quick: a.quick,
         out_dir: Some(a.output),
+        ..Default::default()
     };
     let r = convergence::run(&opts)?;
     print!("{}", r.table());
