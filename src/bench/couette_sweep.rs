@@ -4,15 +4,16 @@
 //! viscosity rule).
 //!
 //! Adapted family: one scale `s` for all sizes of the eq. (6) metric, `ε = 1e-4 s²`,
-//! `hmin = band = 5e-4 s`, `hmax = 0.04 s`, and the growth rate of the sizes away from the
-//! interface `grade = s` (sizes `h ≈ s d` at distance `d`: without it the flow near the disk
-//! is not refined and ω stalls near 1e-4). The default run is `s = 1`; the mesh sizes scale
+//! `hmin = band = 1e-3 s`, `hmax = 0.05 s`, and the growth rate of the sizes away from the
+//! interface `grade = 0.3 s` (sizes `h ≈ 0.3 s d` at distance `d`: with a fixed grade the flow
+//! near the disk is not refined and ω stalls near 1e-4). The default run is `s = 1`; the mesh sizes scale
 //! like `s`, so the vertex count roughly like `1/s²`. Fitted family: edge length `h` on the circle,
 //! `hmax = 8 h` (at most 0.1).
 
-use super::couette::{build_mesh, run, CouetteOptions, CouetteReport};
+use super::couette::{build_mesh, run, CouetteOptions, CouetteReport, PAPER};
 use crate::error::Result;
 use crate::flows::{CouetteCase, InterfaceViscosity, StokesSolver};
+use crate::plot::{loglog_png, LogLogPlot, Series, SeriesStyle};
 use serde::Serialize;
 
 /// One line of [`sweep`].
@@ -29,10 +30,10 @@ pub struct SweepRow {
 pub fn adapted_options(s: f64, interface: InterfaceViscosity) -> CouetteOptions {
     CouetteOptions {
         eps: 1e-4 * s * s,
-        hmin: 5e-4 * s,
-        band: 5e-4 * s,
-        hmax: 0.04 * s,
-        grade: s,
+        hmin: 1e-3 * s,
+        band: 1e-3 * s,
+        hmax: 0.05 * s,
+        grade: 0.3 * s,
         interface,
         figures: false,
         ..CouetteOptions::default()
@@ -122,4 +123,47 @@ pub fn interface_shift(shifts: &[f64]) -> Result<Vec<(f64, f64, f64)>> {
         out.push((d, w[0], w[1]));
     }
     Ok(out)
+}
+
+/// Writes `|ω + 1|` against the vertex count of each family of `rows` as a log-log PNG (with
+/// the paper's FreeFem++ adapted-mesh results, 004 §5.1, as a fourth series).
+pub fn sweep_png(path: &std::path::Path, rows: &[SweepRow]) -> Result<()> {
+    let mut families: Vec<&str> = Vec::new();
+    for r in rows {
+        if !families.contains(&r.family.as_str()) {
+            families.push(&r.family);
+        }
+    }
+    let mut series: Vec<Series> = families
+        .iter()
+        .map(|f| Series {
+            name: (*f).to_string(),
+            points: rows
+                .iter()
+                .filter(|r| r.family == *f && r.report.omega_error > 0.0)
+                .map(|r| (r.report.vertices as f64, r.report.omega_error))
+                .collect(),
+            show_fit_slope: true,
+            style: SeriesStyle::LineMarkers,
+        })
+        .collect();
+    series.push(Series {
+        name: "FreeFem++ adapted (004)".into(),
+        points: PAPER
+            .iter()
+            .map(|&(n, w)| (n as f64, (w + 1.0).abs()))
+            .collect(),
+        show_fit_slope: false,
+        style: SeriesStyle::Markers,
+    });
+    loglog_png(
+        path,
+        &LogLogPlot {
+            title: "Couette disk (004 §5.1): |omega + 1| against vertices".into(),
+            x_label: "vertices".into(),
+            y_label: "|omega + 1|".into(),
+            series,
+            ..LogLogPlot::default()
+        },
+    )
 }
