@@ -185,7 +185,7 @@ pub fn apply(ctx: &mut Ctx, plan: &InsertPlan) -> u32 {
         ctx.mesh.tri_ref[tu] = tref;
         ctx.mesh.edge_ref[tu] = [r, 0, 0];
         ctx.mesh.neighbours[tu] = [NONE; 3];
-        ctx.tstamp[tu] = ctx.gen;
+        ctx.touch(t);
         ctx.link(t, 0, nb, j as usize);
         ctx.mesh.vert_tri[u as usize] = t;
     }

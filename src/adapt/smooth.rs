@@ -109,8 +109,8 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     if !ctx.fast_q {
         ctx.logm[vu] = m.log();
     }
-    for &t in &ctx.fan {
-        ctx.tstamp[t as usize] = ctx.gen;
+    for k in 0..ctx.fan.len() {
+        ctx.touch(ctx.fan[k]);
     }
     for (f, &x) in ctx.fields.iter_mut().zip(&ctx.scratch_f) {
         f[vu] = x;
@@ -127,11 +127,11 @@ pub fn pass(ctx: &mut Ctx) -> usize {
         if ctx.mesh.vert_tri[v as usize] == NONE {
             continue;
         }
-        ctx.load_fan(v);
         // Only vertices whose ball changed since the last smoothing pass.
-        if ctx.fan.iter().all(|&t| ctx.tstamp[t as usize] < since) {
+        if ctx.vmod[v as usize] < since {
             continue;
         }
+        ctx.load_fan(v);
         if let Some(plan) = check_loaded(ctx, v) {
             apply(ctx, &plan);
             count += 1;
