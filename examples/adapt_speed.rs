@@ -39,7 +39,13 @@ fn main() -> anisomesh::Result<()> {
             _ => unreachable!("write_speed_case writes one tensor field"),
         };
         let t0 = Instant::now();
-        let rep = adapt(&mut mesh, &mut metric, &mut [], None, &AdaptOptions::default())?;
+        let rep = adapt(
+            &mut mesh,
+            &mut metric,
+            &mut [],
+            None,
+            &AdaptOptions::default(),
+        )?;
         let secs = t0.elapsed().as_secs_f64();
         let q = quality_stats(&mesh, &metric);
         println!(

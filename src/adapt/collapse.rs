@@ -84,7 +84,7 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     let mut q_new: f64 = 1.0;
     for &t in &ctx.fan {
         let tri = mesh.tris[t as usize];
-        q_old = q_old.max(ctx.q(tri));
+        q_old = q_old.max(ctx.q_tri(t));
         if tri.contains(&b) {
             continue;
         }

@@ -35,7 +35,11 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
     if orient2d(pc, pa, pd) <= 0.0 || orient2d(pc, pd, pb) <= 0.0 {
         return None;
     }
-    let q_old = ctx.q([c, a, b]).max(ctx.q([d, b, a]));
+    let q_old = ctx.q_tri(t).max(ctx.q_tri(t2));
+    // Q_ani >= 1: no flip can bring the worse quality below GAIN * q_old when q_old <= 1/GAIN.
+    if q_old * GAIN <= 1.0 {
+        return None;
+    }
     let q_new = ctx.q([c, a, d]).max(ctx.q([d, b, c]));
     (q_new < GAIN * q_old).then_some(FlipPlan { t, i: i as u8 })
 }

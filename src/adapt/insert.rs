@@ -135,10 +135,7 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
         }
     }
     // Quality: the star must not be worse than the cavity beyond the floor.
-    let q_old = cavity
-        .iter()
-        .map(|&c| ctx.q(mesh.tris[c as usize]))
-        .fold(1.0, f64::max);
+    let q_old = cavity.iter().map(|&c| ctx.q_tri(c)).fold(1.0, f64::max);
     let mut q_new: f64 = 1.0;
     for &(u, w, ..) in &boundary {
         let pts = [p, mesh.points[u as usize], mesh.points[w as usize]];

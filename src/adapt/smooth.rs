@@ -52,7 +52,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
             (mv.yy + ma.yy + mb.yy) / 3.0,
         );
         target += ideal_apex(ctx.p(a), ctx.p(b), &m);
-        q_old = q_old.max(ctx.q(tri));
+        q_old = q_old.max(ctx.q_tri(t));
     }
     target /= ctx.fan.len() as f64;
     if !target.is_finite() {

@@ -70,6 +70,15 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<SplitPlan> {
     })
 }
 
+/// Sort key of a split candidate: longest first by classes of a quarter octave (edges of
+/// length 1.41 to 2^24), then by triangle index — which keeps the new vertices (appended in this
+/// order) close in memory to their neighbours — then local edge.
+#[inline]
+fn split_key(l: f64, t: u32, i: usize) -> u64 {
+    let class = (96.0 - (4.0 * l.log2()).floor()).clamp(0.0, 255.0) as u64;
+    (class << 40) | (u64::from(t) << 2) | i as u64
+}
+
 /// Applies a split: returns the new vertex. Metric and fields at the new vertex come from the
 /// source when it has them, else by interpolation along the edge.
 pub fn apply(ctx: &mut Ctx, plan: &SplitPlan) -> u32 {
@@ -145,7 +154,7 @@ pub fn apply(ctx: &mut Ctx, plan: &SplitPlan) -> u32 {
 /// per pass (an independent set). With `params.insertion` the Delaunay insertion kernel
 /// ([`super::insert`]) is tried first on unlabelled interior edges. Returns the number of new
 /// vertices.
-pub fn pass(ctx: &mut Ctx, cand: &mut Vec<(f64, u32, u8)>) -> usize {
+pub fn pass(ctx: &mut Ctx, cand: &mut Vec<u64>) -> usize {
     ctx.new_pass();
     let from = ctx.split_pos;
     ctx.split_pos = ctx.log.len();
@@ -158,16 +167,14 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<(f64, u32, u8)>) -> usize {
         for i in 0..3 {
             let l = ctx.len(tri[next(i)], tri[prev(i)]);
             if l > l_max {
-                cand.push((l, t, i as u8));
+                cand.push(split_key(l, t, i));
             }
         }
     }
-    // Longest first, by classes of a quarter octave; within a class in triangle order, which
-    // keeps the new vertices (appended in this order) close in memory to their neighbours.
-    let class = |l: f64| -(4.0 * l.log2()).floor() as i64;
-    cand.sort_unstable_by_key(|&(l, t, i)| (class(l), t, i));
+    cand.sort_unstable();
     let mut count = 0;
-    for &(_, t, i) in cand.iter() {
+    for &key in cand.iter() {
+        let (t, i) = ((key >> 2) as u32, (key & 3) as u8);
         let tu = t as usize;
         if ctx.tstamp[tu] == ctx.gen {
             continue;

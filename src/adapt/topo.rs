@@ -59,6 +59,9 @@ pub struct Ctx<'a> {
     pub(crate) flip_pos: usize,
     /// Per-triangle visit mark of the current pass (deduplicates log entries).
     pub(crate) tseen: Vec<u32>,
+    /// Cached `Q_ani` per triangle (NaN: not known; `touch` forgets it). Most operator checks
+    /// compare against the current quality of unchanged triangles.
+    pub(crate) tq: Vec<std::cell::Cell<f64>>,
     pub(crate) gen: u32,
     /// Logarithms of the vertex metrics (element metrics are `exp` of their mean).
     pub(crate) logm: Vec<Sym2>,
@@ -101,6 +104,7 @@ impl<'a> Ctx<'a> {
             split_pos: 0,
             flip_pos: 0,
             tseen: vec![0; nt],
+            tq: vec![std::cell::Cell::new(f64::NAN); nt],
             gen: 1,
             logm,
             last_smooth: 0,
@@ -151,6 +155,19 @@ impl<'a> Ctx<'a> {
         } else {
             kernel::q_ani_log(tri.map(|v| self.p(v)), tri.map(|v| &self.logm[v as usize]))
         }
+    }
+
+    /// `Q_ani` of the live triangle `t` as it is now (cached until the triangle is touched).
+    #[inline]
+    pub(crate) fn q_tri(&self, t: u32) -> f64 {
+        let c = &self.tq[t as usize];
+        let q = c.get();
+        if !q.is_nan() {
+            return q;
+        }
+        let q = self.q(self.mesh.tris[t as usize]);
+        c.set(q);
+        q
     }
 
     /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with log-metric `lv`.
@@ -239,6 +256,7 @@ impl<'a> Ctx<'a> {
             self.log.push(t);
         }
         self.tstamp[tu] = self.gen;
+        self.tq[tu].set(f64::NAN);
         for v in self.mesh.tris[tu] {
             if v != NONE {
                 self.vmod[v as usize] = self.gen;
@@ -273,6 +291,7 @@ impl<'a> Ctx<'a> {
         self.vmod = scatter(&self.vmod, &vmap, nv, 0);
         self.tstamp = scatter(&self.tstamp, &tmap, nt, 0);
         self.tseen = vec![0; nt];
+        self.tq = vec![std::cell::Cell::new(f64::NAN); nt];
         // Keep the log entries some pass has not consumed yet, renumbered.
         let lo = self.split_pos.min(self.flip_pos);
         let mut kept = Vec::with_capacity(self.log.len() - lo);
@@ -308,7 +327,14 @@ impl<'a> Ctx<'a> {
                 out.push(t);
             }
         }
-        out.sort_unstable();
+        if out.len() > self.tseen.len() / 16 {
+            // Many: one sequential sweep of the marks is cheaper than sorting.
+            out.clear();
+            let gen = self.gen;
+            out.extend((0..self.tseen.len() as u32).filter(|&t| self.tseen[t as usize] == gen));
+        } else {
+            out.sort_unstable();
+        }
         out
     }
 
@@ -321,6 +347,7 @@ impl<'a> Ctx<'a> {
         self.mesh.tri_ref.push(tref);
         self.tstamp.push(self.gen);
         self.tseen.push(0);
+        self.tq.push(std::cell::Cell::new(f64::NAN));
         self.log.push(t);
         for v in tri {
             self.vmod[v as usize] = self.gen;
