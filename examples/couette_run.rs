@@ -1,7 +1,7 @@
 //! Runs the Couette benchmark (004 §5.1) once and prints the report.
 //!
 //! Usage: `cargo run --release --example couette_run -- [--fitted] [eps=..] [hmax=..]
-//! [hmin=..] [band=..] [h=..] [out=DIR]`
+//! [hmin=..] [band=..] [grade=..] [--quadrature] [h=..] [out=DIR]`
 
 use anisomesh::bench::couette::{run, CouetteOptions};
 
@@ -16,6 +16,8 @@ fn main() -> anisomesh::Result<()> {
             "hmax" => o.hmax = x,
             "hmin" => o.hmin = x,
             "band" => o.band = x,
+            "grade" => o.grade = x,
+            "--quadrature" => o.interface = anisomesh::flows::InterfaceViscosity::Quadrature,
             "width" => o.width = x,
             "h" => o.h_interface = x,
             "out" => o.out_dir = Some(v.into()),

@@ -137,14 +137,29 @@ fn uzawa_agrees_with_direct_and_is_thread_count_independent() {
         .iter()
         .map(|p| (*p - DVec2::splat(0.5)).length() - 0.2)
         .collect();
-    let shear = |p: DVec2| DVec2::new(2.0 * (p.y - 0.5), 0.0);
-    let mut pb = StokesProblem::new(&mesh)
-        .viscosity(Viscosity::TwoPhase {
-            phi,
+    uzawa_vs_direct(
+        &mesh,
+        Viscosity::TwoPhase {
+            phi: phi.clone(),
             mu_in: 1.0,
             mu_out: 1e-3,
             width: 0.0,
-        })
+        },
+    );
+    uzawa_vs_direct(
+        &mesh,
+        Viscosity::TwoPhaseHarmonic {
+            phi,
+            mu_in: 1.0,
+            mu_out: 1e-3,
+        },
+    );
+}
+
+fn uzawa_vs_direct(mesh: &Mesh2, visc: Viscosity) {
+    let shear = |p: DVec2| DVec2::new(2.0 * (p.y - 0.5), 0.0);
+    let mut pb = StokesProblem::new(mesh)
+        .viscosity(visc)
         .force(&|p: DVec2| DVec2::new(0.0, -p.x));
     for l in 1..=4 {
         pb = pb.dirichlet(l, &shear);

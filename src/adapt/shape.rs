@@ -3,7 +3,7 @@
 //! until the vertex count changes by less than `tol` (2% by default).
 
 use super::driver::{adapt, AdaptOptions, AdaptReport};
-use super::sources::{AnalyticLevelSetSource, LevelSetMetric, MetricSource};
+use super::sources::{derivatives_at_scale, AnalyticLevelSetSource, LevelSetMetric, MetricSource};
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::levelset::shapes::Shape;
@@ -29,6 +29,13 @@ pub struct ShapeAdaptOptions {
     /// vertices (the level set is still evaluated exactly). Spreads the refinement around
     /// corners into the neighbouring elements and smooths size jumps.
     pub gradation: Option<f64>,
+    /// Kink resolution: when set to `k`, the Hessian of eq. (6) is the larger (spectral norm) of
+    /// the shape's exact Hessian and the Hessian seen at the scale `δ = k hmin`
+    /// ([`crate::adapt::sources::derivatives_at_scale`]). Where the distance has a kink (the medial axis through a corner
+    /// of the shape, e.g. the slot corners of the Zalesak disk) the exact Hessian is zero on both
+    /// sides while the one at scale `δ` is about `|[∇u]| / 2δ`; eq. (6) then asks for `hmin`
+    /// across the kink. `None` (the default): exact Hessian only.
+    pub kink_scale: Option<f64>,
 }
 
 impl Default for ShapeAdaptOptions {
@@ -40,6 +47,7 @@ impl Default for ShapeAdaptOptions {
             max_rounds: 8,
             tol: 0.02,
             gradation: Some(2.0),
+            kink_scale: None,
         }
     }
 }
@@ -66,7 +74,17 @@ pub fn adapt_to_shape(
     let t0 = std::time::Instant::now();
     let n = opts.coarse_cells;
     let mut mesh = Mesh2::rectangle(domain.0, domain.1, n, n, GridPattern::UnionJack)?;
-    let f = |p: DVec2| derivatives(shape, p);
+    if opts.kink_scale.is_some_and(|k| !(k > 0.0 && k.is_finite())) {
+        return Err(Error::InvalidInput(format!(
+            "adapt_to_shape: kink_scale must be positive (got {:?})",
+            opts.kink_scale
+        )));
+    }
+    let delta = opts.kink_scale.map(|k| k * opts.metric.hmin);
+    let f = |p: DVec2| match delta {
+        Some(d) => derivatives_at_scale(shape, p, d),
+        None => derivatives(shape, p),
+    };
     let src = AnalyticLevelSetSource::new(f, opts.metric);
     let mut total = AdaptReport::default();
     let mut prev_n = mesh.n_points();

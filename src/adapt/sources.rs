@@ -7,6 +7,7 @@
 
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
+use crate::levelset::shapes::Shape;
 use crate::mesh::Mesh2;
 use crate::metric::{geometric_metric, MetricBounds, Sym2};
 use rayon::prelude::*;
@@ -224,5 +225,37 @@ impl HessianMetric {
         } else {
             crate::metric::multiscale_lp(mesh, &h, self.p, self.target_vertices, &bounds)
         }
+    }
+}
+
+/// Largest absolute eigenvalue of a symmetric 2x2 matrix.
+fn spectral_norm(h: &Sym2) -> f64 {
+    let (l, _) = h.eigen();
+    l[0].abs().max(l[1].abs())
+}
+
+/// `(u, ∇u, H)` at `p` for the eq. (6) metric (004 §4.2) with kinks resolved at scale `delta`:
+/// `H` is the shape's exact Hessian or, when its spectral norm is larger, the Hessian seen at
+/// scale `delta`, the symmetrised central differences of the exact gradient
+/// `H_δ e_i = (∇u(p + δ e_i) - ∇u(p - δ e_i)) / 2δ`.
+///
+/// Where `u` is smooth on the scale `δ`, `H_δ = D²u + O(δ²)` and the exact Hessian is kept. On
+/// the medial axis through a corner of the shape the gradient jumps by `[∇u]` (up to `√2` at a
+/// right-angle slot corner) and the pointwise Hessian is zero on both sides — the hypothesis of
+/// 004 Theorem 1 (Lipschitz derivatives) fails there and eq. (6) would let the elements stretch
+/// across the kink. `|H_δ| ≈ |[∇u]| / 2δ` within `δ` of the kink instead, which eq. (6) bounds
+/// to `hmin` across it when `δ ≈ hmin`: the P1 interpolant sees the kink at the scale of its
+/// elements.
+pub fn derivatives_at_scale(shape: &dyn Shape, p: DVec2, delta: f64) -> (f64, DVec2, Sym2) {
+    let (u, g, h) = (shape.distance(p), shape.gradient(p), shape.hessian(p));
+    let dx = DVec2::new(delta, 0.0);
+    let dy = DVec2::new(0.0, delta);
+    let gx = (shape.gradient(p + dx) - shape.gradient(p - dx)) / (2.0 * delta);
+    let gy = (shape.gradient(p + dy) - shape.gradient(p - dy)) / (2.0 * delta);
+    let hd = Sym2::new(gx.x, 0.5 * (gx.y + gy.x), gy.y);
+    if spectral_norm(&hd) > spectral_norm(&h) {
+        (u, g, hd)
+    } else {
+        (u, g, h)
     }
 }

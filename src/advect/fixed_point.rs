@@ -8,7 +8,13 @@
 //! anisotropic metric tensors must be combined … a metric intersection procedure is used"),
 //! and recomputes `u^{n+1}_{j+1}` on the new mesh by 004 eq. (2). The loop stops when the mean
 //! L1 change `∫|u^{n+1}_{j+1} − u^{n+1}_j| / |Ω|` is below a tolerance, or after a cap of
-//! iterations.
+//! iterations. Inside the loop `u^{n+1}_j` is the cheap nodal form (it only feeds the metric
+//! and the stopping test); the requested form (the L2 projection of eq. (2) by default) is
+//! computed once on the final mesh. Measured on the Zalesak default (one revolution in 16
+//! periods, about 5,000 vertices): advection time 3.4 s -> 1.4 s (loaded machine), relative
+//! area error -2.8e-4 -> -3.5e-4, perimeter -1.19e-3 -> -1.23e-3, max interface distance
+//! 1.6e-3 -> 2.6e-3 (the meshes adapt to the nodal prediction; a nodal quadratic prediction
+//! gave 3.7e-3, so the P1 one is kept).
 //!
 //! The adaptation itself is behind the [`Adapter`] trait ("adapt this mesh to the intersected
 //! metrics of these level sets"), so the loop can be tested with [`IdentityAdapter`] on a
@@ -125,7 +131,10 @@ pub fn advance_period<V: Velocity + ?Sized, A: Adapter + ?Sized>(
         let ta = Instant::now();
         let new_mesh = adapter.adapt(&mesh, &fields)?;
         adapt_seconds += ta.elapsed().as_secs_f64();
-        let u_new = advect(old, u_old, &new_mesh, v, t0, t1, &opts.advect)?;
+        // The prediction of u^{n+1} on the new mesh that drives the next iteration and the
+        // stopping test is computed in the nodal form; the requested form (L2 projection by
+        // default) is computed once, on the final mesh, below.
+        let u_new = advect(old, u_old, &new_mesh, v, t0, t1, &metric_advect)?;
         let prev = interpolate(
             &mesh,
             &u_next,
@@ -141,6 +150,9 @@ pub fn advance_period<V: Velocity + ?Sized, A: Adapter + ?Sized>(
             converged = true;
             break;
         }
+    }
+    if opts.advect.form != Form::Nodal {
+        u_next = advect(old, u_old, &mesh, v, t0, t1, &opts.advect)?;
     }
     Ok(PeriodResult {
         mesh,

@@ -28,7 +28,7 @@
 //! interpolated log-log between its sweep points — the ratio of isotropic to anisotropic vertex
 //! counts (004 §5.1 claims about 10 on Zalesak), and the plain ratio at equal `ε`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -38,10 +38,13 @@ use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::levelset::{
     enclosed_area, extract_zero_level, interface_distance, interface_length, nodal_distance,
-    shape_by_name, Shape,
+    shape_by_name, Polyline, Shape, Zalesak,
 };
 use crate::mesh::{GridPattern, Mesh2};
-use crate::plot::{fit_loglog_slope, loglog_rgb, LogLogPlot, RgbImage, Series, SeriesStyle};
+use crate::plot::fit_loglog_slope;
+
+pub use super::convergence_figure::{figure, write_csv, ReportedPoint, REPORTED};
+use super::peers::{find_program, run_peer_with, PeerKind, PeerOptions, PeerResult};
 
 /// Options of [`run`] (the CLI `anisomesh convergence --shape ...` maps onto these).
 #[derive(Debug, Clone, Serialize)]
@@ -55,6 +58,18 @@ pub struct ConvergenceOptions {
     pub points: usize,
     /// A tiny sweep (coarse `ε` and grids, seconds): for tests and smoke runs.
     pub quick: bool,
+    /// Resolve the kinks of the distance at the scale `k hmin` in the metric of the adapted
+    /// families ([`crate::adapt::ShapeAdaptOptions::kink_scale`]); default `Some(1.0)`.
+    pub kink_scale: Option<f64>,
+    /// Half-width of the band where eq. (6) applies, in units of `h_min`; `None` (default): the
+    /// `anisomesh adapt` band `5 ε` (`0.5 h_min` at `ε = 1e-4`).
+    pub band_hmin: Option<f64>,
+    /// Growth rate of the sizes outside the band; `None` (default): the `anisomesh adapt` rate 1.
+    pub grade: Option<f64>,
+    /// On the Zalesak disk, also run the installed peers ([`PEER_KINDS`]) on the anisotropic
+    /// family's metric at every `ε` of the sweep (skipped with a printed note when a peer is not
+    /// on `PATH`).
+    pub peers: bool,
 }
 
 impl Default for ConvergenceOptions {
@@ -64,6 +79,10 @@ impl Default for ConvergenceOptions {
             out_dir: None,
             points: 5,
             quick: false,
+            kink_scale: Some(1.0),
+            band_hmin: None,
+            grade: None,
+            peers: true,
         }
     }
 }
@@ -100,6 +119,11 @@ pub struct ConvergenceRow {
     pub triangles: usize,
     /// Two-sided sampled Hausdorff distance between `Γ_h` and `Γ`.
     pub hausdorff: f64,
+    /// The part of it attained within [`CORNER_RADIUS`] of a corner of the shape
+    /// ([`hausdorff_split`]; 0 for shapes without corners).
+    pub hausdorff_corners: f64,
+    /// The part attained elsewhere (on the straight and curved parts).
+    pub hausdorff_rest: f64,
     /// `|A_h - A| / A`.
     pub area_rel_error: f64,
     /// `|L_h - L| / L`.
@@ -137,9 +161,13 @@ pub struct AnisotropyGain {
     pub at_equal_error: Vec<GainPoint>,
     /// Median of `at_equal_error` ratios (`None` when the error ranges do not overlap).
     pub median_at_equal_error: Option<f64>,
-    /// `(ε, isotropic / anisotropic vertices)` at the same `ε` (the isotropic mesh is then the
-    /// more accurate one).
+    /// `(ε, isotropic / anisotropic vertices)` at the same `ε`, i.e. the same `hmin` and band
+    /// (the paper's comparison, 004 §5.1: "the corresponding isotropic graded mesh").
     pub at_equal_eps: Vec<(f64, f64)>,
+    /// `(Hausdorff error, ratio)` from the least-squares power laws `log N = a + b log e` of the
+    /// two families, at errors log-spaced over the overlap of their ranges (less sensitive to
+    /// one noisy sweep point than the interpolation).
+    pub fitted: Vec<(f64, f64)>,
 }
 
 /// What [`run`] measured.
@@ -151,6 +179,9 @@ pub struct ConvergenceReport {
     pub rows: Vec<ConvergenceRow>,
     pub fits: Vec<FamilyFit>,
     pub gain: AnisotropyGain,
+    /// The peers run on the anisotropic family's metric (Zalesak only; unavailable ones are
+    /// listed with their status).
+    pub peers: Vec<PeerResult>,
     /// Files written (CSV, PNG).
     pub files: Vec<PathBuf>,
 }
@@ -169,7 +200,7 @@ impl ConvergenceReport {
     /// A plain-text table of the sweep, the slopes and the gain.
     pub fn table(&self) -> String {
         let mut s = format!(
-            "convergence on {} (domain [{}, {}] x [{}, {}])\n{:<12} {:>10} {:>10} {:>9} {:>11} {:>11} {:>11} {:>8}\n",
+            "convergence on {} (domain [{}, {}] x [{}, {}])\n{:<12} {:>10} {:>10} {:>9} {:>11} {:>11} {:>11} {:>11} {:>11} {:>8}\n",
             self.shape,
             self.domain[0],
             self.domain[2],
@@ -180,18 +211,22 @@ impl ConvergenceReport {
             "hmin",
             "vertices",
             "hausdorff",
+            "d_H corners",
+            "d_H rest",
             "area err",
             "perim err",
             "seconds"
         );
         for r in &self.rows {
             s += &format!(
-                "{:<12} {:>10.3e} {:>10.3e} {:>9} {:>11.3e} {:>11.3e} {:>11.3e} {:>8.2}\n",
+                "{:<12} {:>10.3e} {:>10.3e} {:>9} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>11.3e} {:>8.2}\n",
                 r.family.name(),
                 r.parameter,
                 r.hmin,
                 r.vertices,
                 r.hausdorff,
+                r.hausdorff_corners,
+                r.hausdorff_rest,
                 r.area_rel_error,
                 r.perimeter_rel_error,
                 r.seconds
@@ -215,8 +250,32 @@ impl ConvergenceReport {
             Some(m) => s += &format!("anisotropy pays (median ratio at equal error): {m:.2}\n"),
             None => s += "anisotropy pays: the error ranges do not overlap\n",
         }
+        for (e, r) in &self.gain.fitted {
+            s += &format!("fitted power laws, error {e:.3e}: isotropic / anisotropic = {r:.2}\n");
+        }
         for (eps, r) in &self.gain.at_equal_eps {
             s += &format!("equal eps {eps:.1e}: isotropic / anisotropic vertices = {r:.2}\n");
+        }
+        for p in &self.peers {
+            if p.is_ok() {
+                s += &format!(
+                    "peer {:<13} eps {:.1e}: {} vertices, hausdorff {:.3e}, area {:.3e}, perimeter {:.3e}, {:.1} s\n",
+                    p.peer.slug(),
+                    p.eps,
+                    p.vertices,
+                    p.hausdorff,
+                    p.area_rel_error.abs(),
+                    p.perimeter_rel_error.abs(),
+                    p.seconds
+                );
+            } else {
+                s += &format!(
+                    "peer {:<13} eps {:.1e}: {:?}\n",
+                    p.peer.slug(),
+                    p.eps,
+                    p.status
+                );
+            }
         }
         s
     }
@@ -253,10 +312,12 @@ pub fn sweep(shape: &str, points: usize, quick: bool) -> Result<(Vec<f64>, Vec<u
     } else {
         (eps_max * 1e-2, points)
     };
+    // Powers of ten computed as such, so that the last full point is exactly `1e-4` (the default
+    // `anisomesh adapt` setting; the corner errors react to the last bit of `h_min`).
     let eps = (0..n_max)
         .map(|k| {
             let t = k as f64 / (n_max - 1) as f64;
-            (eps_max.ln() + t * (eps_min.ln() - eps_max.ln())).exp()
+            10f64.powf(eps_max.log10() + t * (eps_min.log10() - eps_max.log10()))
         })
         .collect();
     let top: usize = match (quick, zalesak) {
@@ -271,36 +332,144 @@ pub fn sweep(shape: &str, points: usize, quick: bool) -> Result<(Vec<f64>, Vec<u
     Ok((eps, cells))
 }
 
-/// The level-set metric of the adapted families at `ε` (see the module documentation).
+/// The level-set metric of the adapted families at `ε`: the default `anisomesh adapt` setting
+/// ([`LevelSetMetric::default`]: band `5 ε`, sizes growing at rate 1 outside it, anisotropy at
+/// most 1e4, `h_max = 0.2`) with `h_min = 0.1 √ε`, so that `ε = 1e-4` is exactly the default run
+/// (004 §5.1: `h_min = 0.001`, `h_max = 0.2`).
 pub fn metric_for(eps: f64, isotropic: bool) -> LevelSetMetric {
-    let hmin = 0.1 * eps.sqrt();
-    let hmax = 0.2;
+    metric_with(eps, isotropic, None, None)
+}
+
+/// [`metric_for`] with the band half-width `band_hmin h_min` and the growth rate `grade` outside
+/// it where given (the "equal settings" variations of the anisotropy-pays comparison).
+pub fn metric_with(
+    eps: f64,
+    isotropic: bool,
+    band_hmin: Option<f64>,
+    grade: Option<f64>,
+) -> LevelSetMetric {
+    let d = LevelSetMetric::default();
+    let hmin = eps.sqrt() / 10.0;
     LevelSetMetric {
         eps,
         hmin,
-        hmax,
-        max_aniso: hmax / hmin,
-        band: 4.0 * hmin,
-        grade: 0.3,
-        analytic: true,
+        band: band_hmin.map_or(d.band * (eps / d.eps), |k| k * hmin),
+        grade: grade.unwrap_or(d.grade),
         isotropic,
+        ..d
     }
 }
 
 /// A mesh of `domain` adapted to the zero level of `shape` with the metric `lm`, by
-/// [`adapt_to_shape`] with its default rounds, tolerance and gradation. Returns the mesh and
-/// whether the rounds settled.
+/// [`adapt_to_shape`] with its default rounds, tolerance and gradation, kinks resolved at
+/// `kink_scale`. Returns the mesh and whether the rounds settled.
 fn adapted_mesh(
     shape: &dyn Shape,
     domain: (DVec2, DVec2),
     lm: LevelSetMetric,
+    kink_scale: Option<f64>,
 ) -> Result<(Mesh2, bool)> {
     let opts = ShapeAdaptOptions {
         metric: lm,
+        kink_scale,
         ..ShapeAdaptOptions::default()
     };
     let (mesh, _u, rep) = adapt_to_shape(shape, domain, &opts)?;
     Ok((mesh, rep.converged))
+}
+
+/// Radius of the corner neighbourhoods of [`hausdorff_split`] in the sweep (the slot of the
+/// Zalesak disk is 0.12 wide).
+pub const CORNER_RADIUS: f64 = 0.02;
+
+/// The corners of a benchmark shape (where its distance has kinks): the four slot corners of the
+/// Zalesak disk, none for the circle and the flower.
+pub fn corners_of(shape: &str) -> Vec<DVec2> {
+    if !shape.trim().eq_ignore_ascii_case("zalesak") {
+        return Vec::new();
+    }
+    let z = Zalesak::default();
+    let (c, w) = (z.centre, z.half_width);
+    let y_bottom = c.y - (z.radius * z.radius - w * w).sqrt();
+    vec![
+        DVec2::new(c.x - w, z.slot_top),
+        DVec2::new(c.x + w, z.slot_top),
+        DVec2::new(c.x - w, y_bottom),
+        DVec2::new(c.x + w, y_bottom),
+    ]
+}
+
+/// A shape whose boundary samples are restricted to one side of a corner neighbourhood (the
+/// exact → discrete direction of [`interface_distance`] restricted to a region).
+struct Restricted<'a> {
+    shape: &'a dyn Shape,
+    corners: &'a [DVec2],
+    radius: f64,
+    near: bool,
+}
+
+impl Restricted<'_> {
+    fn keeps(&self, p: DVec2) -> bool {
+        near_corner(p, self.corners, self.radius) == self.near
+    }
+}
+
+fn near_corner(p: DVec2, corners: &[DVec2], radius: f64) -> bool {
+    corners.iter().any(|c| (p - *c).length() < radius)
+}
+
+impl Shape for Restricted<'_> {
+    fn distance(&self, p: DVec2) -> f64 {
+        self.shape.distance(p)
+    }
+    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+        self.shape
+            .boundary_samples(n)
+            .map(|v| v.into_iter().filter(|&p| self.keeps(p)).collect())
+    }
+    fn name(&self) -> String {
+        self.shape.name()
+    }
+}
+
+/// The two-sided interface distance of [`interface_distance`] split by region: `(near, rest)`,
+/// the largest distance attained within `radius` of one of `corners` and elsewhere (points of
+/// `Γ_h` measured by `|d|`, samples of `Γ` by their distance to `Γ_h`; 4 samples per segment).
+/// `max(near, rest)` is the Hausdorff distance. With no corners `near` is 0.
+pub fn hausdorff_split(
+    lines: &[Polyline],
+    shape: &dyn Shape,
+    corners: &[DVec2],
+    radius: f64,
+) -> (f64, f64) {
+    let (mut near, mut rest): (f64, f64) = (0.0, 0.0);
+    let k = 4;
+    for pl in lines {
+        for (a, b) in pl.segments() {
+            for i in 0..k {
+                let p = a + (b - a) * (i as f64 / (k - 1) as f64);
+                let d = shape.distance(p).abs();
+                if near_corner(p, corners, radius) {
+                    near = near.max(d);
+                } else {
+                    rest = rest.max(d);
+                }
+            }
+        }
+    }
+    for (is_near, acc) in [(true, &mut near), (false, &mut rest)] {
+        let r = Restricted {
+            shape,
+            corners,
+            radius,
+            near: is_near,
+        };
+        let from = interface_distance(lines, &r, k).from_exact_max;
+        if from.is_finite() {
+            *acc = acc.max(from);
+        }
+    }
+    (near, rest)
 }
 
 /// The interface measures of the nodal interpolant of `shape`'s distance on `mesh`:
@@ -331,16 +500,22 @@ pub fn measure(mesh: &Mesh2, shape: &dyn Shape) -> Result<(f64, f64, f64)> {
     ))
 }
 
+#[allow(clippy::too_many_arguments)]
 fn row(
     family: Family,
     parameter: f64,
     hmin: f64,
     mesh: &Mesh2,
     shape: &dyn Shape,
+    corners: &[DVec2],
     seconds: f64,
     converged: bool,
 ) -> Result<ConvergenceRow> {
     let (hausdorff, area_rel_error, perimeter_rel_error) = measure(mesh, shape)?;
+    let u = nodal_distance(mesh, shape);
+    let lines = extract_zero_level(mesh, &u)?;
+    let (hausdorff_corners, hausdorff_rest) =
+        hausdorff_split(&lines, shape, corners, CORNER_RADIUS);
     Ok(ConvergenceRow {
         family,
         parameter,
@@ -348,6 +523,8 @@ fn row(
         vertices: mesh.n_points(),
         triangles: mesh.n_live_tris(),
         hausdorff,
+        hausdorff_corners,
+        hausdorff_rest,
         area_rel_error,
         perimeter_rel_error,
         seconds,
@@ -355,23 +532,87 @@ fn row(
     })
 }
 
+/// The peers run beside the sweep on the Zalesak disk: mmg2d and BAMG given the anisotropic
+/// family's metric at the vertices of their meshes, and BAMG with its own Hessian metric of the
+/// level set (`adaptmesh(Th, u, err = ε)`).
+pub const PEER_KINDS: [PeerKind; 3] = [
+    PeerKind::Mmg2dMetric,
+    PeerKind::BamgMetric,
+    PeerKind::BamgLevelSet,
+];
+
+/// The peers' fixed point (as [`crate::bench::peers`]): from a 50 x 50 grid, six adapter calls
+/// (issue 3 quotes mmg2d after six passes); quick: a 30 x 30 grid and two calls.
+fn peer_options(opts: &ConvergenceOptions) -> PeerOptions {
+    let d = PeerOptions::default();
+    PeerOptions {
+        background: if opts.quick { 30 } else { 50 },
+        iterations: if opts.quick { 2 } else { 6 },
+        timeout: std::time::Duration::from_secs(if opts.quick { 60 } else { 600 }),
+        work_dir: d
+            .work_dir
+            .join(format!("convergence-{}", std::process::id())),
+        kink_scale: opts.kink_scale,
+        ..d
+    }
+}
+
+/// Runs the installed peers of [`PEER_KINDS`] at every `ε` (quick: the first only); a peer not
+/// on `PATH` is skipped with a printed note (and listed once in the result with its status).
+fn run_peers(eps_list: &[f64], opts: &ConvergenceOptions) -> Vec<PeerResult> {
+    let popts = peer_options(opts);
+    let mut out = Vec::new();
+    for kind in PEER_KINDS {
+        let Some(program) = kind.program() else {
+            continue;
+        };
+        if find_program(program).is_none() {
+            println!(
+                "note: {program} not found on PATH: the measured {} series is skipped",
+                kind.slug()
+            );
+            out.push(PeerResult::unavailable(
+                kind,
+                f64::NAN,
+                format!("{program} not on PATH"),
+            ));
+            continue;
+        }
+        for &eps in eps_list
+            .iter()
+            .take(if opts.quick { 1 } else { usize::MAX })
+        {
+            let m = metric_with(eps, false, opts.band_hmin, opts.grade);
+            let r = run_peer_with(kind, &m, &popts);
+            if !r.is_ok() {
+                println!("note: {} at eps {eps:.1e}: {:?}", kind.slug(), r.status);
+            }
+            out.push(r);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&popts.work_dir);
+    out
+}
+
 /// Runs the sweep of the three families on `opts.shape`, fits the slopes, computes the
-/// anisotropy gain and, with `out_dir`, writes `convergence_<shape>.csv` and the two-panel
-/// log-log figure `convergence_<shape>.png` (Hausdorff and relative area error against vertices,
-/// with the points reported in issue 3 for Zalesak).
+/// anisotropy gain, runs the installed peers (Zalesak, `opts.peers`) and, with `out_dir`, writes
+/// `convergence_<shape>.csv` and the three-panel figure `convergence_<shape>.png`
+/// ([`super::convergence_figure`]).
 ///
-/// Errors: an unknown shape, fewer than 2 points, adaptation or I/O failures.
+/// Errors: an unknown shape, fewer than 2 points, adaptation or I/O failures (never a missing
+/// peer).
 pub fn run(opts: &ConvergenceOptions) -> Result<ConvergenceReport> {
     let shape = shape_by_name(&opts.shape)?;
     let name = opts.shape.trim().to_ascii_lowercase();
     let domain = domain_of(&name)?;
+    let corners = corners_of(&name);
     let (eps_list, cells) = sweep(&name, opts.points, opts.quick)?;
     let mut rows = Vec::new();
     for &eps in &eps_list {
         for (family, iso) in [(Family::Anisotropic, false), (Family::Isotropic, true)] {
-            let lm = metric_for(eps, iso);
+            let lm = metric_with(eps, iso, opts.band_hmin, opts.grade);
             let t = Instant::now();
-            let (mesh, converged) = adapted_mesh(shape.as_ref(), domain, lm)?;
+            let (mesh, converged) = adapted_mesh(shape.as_ref(), domain, lm, opts.kink_scale)?;
             let secs = t.elapsed().as_secs_f64();
             rows.push(row(
                 family,
@@ -379,6 +620,7 @@ pub fn run(opts: &ConvergenceOptions) -> Result<ConvergenceReport> {
                 lm.hmin,
                 &mesh,
                 shape.as_ref(),
+                &corners,
                 secs,
                 converged,
             )?);
@@ -395,6 +637,7 @@ pub fn run(opts: &ConvergenceOptions) -> Result<ConvergenceReport> {
             h,
             &mesh,
             shape.as_ref(),
+            &corners,
             secs,
             true,
         )?);
@@ -416,12 +659,18 @@ pub fn run(opts: &ConvergenceOptions) -> Result<ConvergenceReport> {
         })
         .collect();
     let gain = anisotropy_gain(&rows);
+    let peers = if opts.peers && name == "zalesak" {
+        run_peers(&eps_list, opts)
+    } else {
+        Vec::new()
+    };
     let mut report = ConvergenceReport {
         shape: name.clone(),
         domain: [domain.0.x, domain.0.y, domain.1.x, domain.1.y],
         rows,
         fits,
         gain,
+        peers,
         files: Vec::new(),
     };
     if let Some(dir) = &opts.out_dir {
@@ -513,165 +762,59 @@ pub fn anisotropy_gain(rows: &[ConvergenceRow]) -> AnisotropyGain {
         at_equal_error,
         median_at_equal_error,
         at_equal_eps,
+        fitted: fitted_gain(&ani, &iso, 4),
     }
 }
 
-/// A point reported by a peer in issue 3 (Zalesak): vertices, Hausdorff, relative area error
-/// (NaN where not reported).
-#[derive(Debug, Clone, Copy)]
-pub struct ReportedPoint {
-    pub peer: &'static str,
-    pub vertices: f64,
-    pub hausdorff: f64,
-    pub area_rel_error: f64,
-    pub perimeter_rel_error: f64,
-}
-
-/// The peers' Zalesak points quoted in issue 3: BAMG (FreeFem++ `adaptmesh`) and mmg2d after six
-/// fixed-point passes. (Issue 3 also quotes a uniform mesh of 641,601 vertices for errors of
-/// this size without numbers; the full Zalesak sweep measures that very grid, 800 x 800 cells.)
-pub const REPORTED: [ReportedPoint; 4] = [
-    ReportedPoint {
-        peer: "BAMG",
-        vertices: 5720.0,
-        hausdorff: 4.5e-4,
-        area_rel_error: 5.5e-5,
-        perimeter_rel_error: f64::NAN,
-    },
-    ReportedPoint {
-        peer: "BAMG",
-        vertices: 4988.0,
-        hausdorff: 1.1e-3,
-        area_rel_error: 2.6e-4,
-        perimeter_rel_error: f64::NAN,
-    },
-    ReportedPoint {
-        peer: "BAMG",
-        vertices: 9426.0,
-        hausdorff: 5.5e-4,
-        area_rel_error: 8.7e-5,
-        perimeter_rel_error: f64::NAN,
-    },
-    ReportedPoint {
-        peer: "mmg2d",
-        vertices: 4465.0,
-        hausdorff: f64::NAN,
-        area_rel_error: 3.7e-4,
-        perimeter_rel_error: 3.4e-4,
-    },
-];
-
-fn csv_num(x: f64) -> String {
-    if x.is_finite() {
-        format!("{x:e}")
-    } else {
-        String::new()
-    }
-}
-
-/// Writes the rows (and, for Zalesak, the reported peer points) as CSV, atomically.
-pub fn write_csv(path: &Path, report: &ConvergenceReport) -> Result<()> {
-    let mut lines = vec![
-        "family,parameter,hmin,vertices,triangles,hausdorff,area_rel_error,perimeter_rel_error,seconds,converged".to_string(),
-    ];
-    for r in &report.rows {
-        lines.push(format!(
-            "{},{},{},{},{},{},{},{},{:.3},{}",
-            r.family.name(),
-            csv_num(r.parameter),
-            csv_num(r.hmin),
-            r.vertices,
-            r.triangles,
-            csv_num(r.hausdorff),
-            csv_num(r.area_rel_error),
-            csv_num(r.perimeter_rel_error),
-            r.seconds,
-            r.converged
-        ));
-    }
-    if report.shape == "zalesak" {
-        for p in REPORTED {
-            lines.push(format!(
-                "{} (reported issue 3),,,{},,{},{},{},,",
-                p.peer,
-                p.vertices,
-                csv_num(p.hausdorff),
-                csv_num(p.area_rel_error),
-                csv_num(p.perimeter_rel_error)
-            ));
-        }
-    }
-    let text = lines.join("\n") + "\n";
-    crate::io::atomic_write(path, |w| w.write_all(text.as_bytes()))
-}
-
-/// One log-log panel: the three families (fitted slopes in the legend) and the reported peers.
-fn panel(report: &ConvergenceReport, area: bool) -> LogLogPlot {
-    let value = |r: &ConvergenceRow| if area { r.area_rel_error } else { r.hausdorff };
-    let mut series: Vec<Series> = [Family::Anisotropic, Family::Isotropic, Family::Uniform]
-        .into_iter()
-        .map(|f| Series {
-            name: f.name().into(),
-            points: report
-                .family(f)
-                .iter()
-                .map(|r| (r.vertices as f64, value(r)))
-                .collect(),
-            show_fit_slope: true,
-            style: SeriesStyle::LineMarkers,
-        })
+/// Least-squares line `log N = a + b log e` through `(N, e)` points; `None` with fewer than two
+/// distinct errors.
+fn fit_vertices_on_error(points: &[(f64, f64)]) -> Option<(f64, f64)> {
+    let logs: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(n, e)| *n > 0.0 && *e > 0.0 && n.is_finite() && e.is_finite())
+        .map(|(n, e)| (e.ln(), n.ln()))
         .collect();
-    if report.shape == "zalesak" {
-        for peer in ["BAMG", "mmg2d"] {
-            let points: Vec<(f64, f64)> = REPORTED
-                .iter()
-                .filter(|p| p.peer == peer)
-                .map(|p| {
-                    (
-                        p.vertices,
-                        if area { p.area_rel_error } else { p.hausdorff },
-                    )
-                })
-                .filter(|p| p.1.is_finite())
-                .collect();
-            if !points.is_empty() {
-                series.push(Series {
-                    name: format!("{peer} (reported, issue 3)"),
-                    points,
-                    show_fit_slope: false,
-                    style: SeriesStyle::Markers,
-                });
-            }
-        }
+    let k = logs.len() as f64;
+    if logs.len() < 2 {
+        return None;
     }
-    let (what, label) = if area {
-        ("relative area error", "|A_h - A| / A")
-    } else {
-        ("interface Hausdorff distance", "Hausdorff distance")
-    };
-    LogLogPlot {
-        title: format!("{}: {what} vs vertices", report.shape),
-        x_label: "vertices".into(),
-        y_label: label.into(),
-        series,
-        width: 900,
-        height: 650,
-    }
+    let mx = logs.iter().map(|p| p.0).sum::<f64>() / k;
+    let my = logs.iter().map(|p| p.1).sum::<f64>() / k;
+    let sxx: f64 = logs.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = logs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| (my - sxy / sxx * mx, sxy / sxx))
 }
 
-/// The two panels side by side (Hausdorff left, area right).
-pub fn figure(report: &ConvergenceReport) -> Result<RgbImage> {
-    let left = loglog_rgb(&panel(report, false))?;
-    let right = loglog_rgb(&panel(report, true))?;
-    let height = left.height.max(right.height);
-    let mut img = RgbImage::new(left.width + right.width, height)?;
-    let w = img.width as usize;
-    for (src, x0) in [(&left, 0usize), (&right, left.width as usize)] {
-        let sw = src.width as usize;
-        for y in 0..src.height as usize {
-            let s = &src.pixels[3 * y * sw..3 * (y + 1) * sw];
-            img.pixels[3 * (y * w + x0)..3 * (y * w + x0 + sw)].copy_from_slice(s);
-        }
+/// `count` errors log-spaced over the overlap of the two families' error ranges and the ratio
+/// `N_iso(e) / N_ani(e)` of their fitted power laws there (empty when the ranges do not
+/// overlap).
+pub fn fitted_gain(ani: &[(f64, f64)], iso: &[(f64, f64)], count: usize) -> Vec<(f64, f64)> {
+    let range = |p: &[(f64, f64)]| {
+        p.iter()
+            .map(|q| q.1)
+            .filter(|e| *e > 0.0 && e.is_finite())
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), e| {
+                (lo.min(e), hi.max(e))
+            })
+    };
+    let ((alo, ahi), (ilo, ihi)) = (range(ani), range(iso));
+    let (lo, hi) = (alo.max(ilo), ahi.min(ihi));
+    let (Some((aa, ba)), Some((ai, bi))) = (fit_vertices_on_error(ani), fit_vertices_on_error(iso))
+    else {
+        return Vec::new();
+    };
+    if lo >= hi || lo.is_nan() || hi.is_nan() || count == 0 {
+        return Vec::new();
     }
-    Ok(img)
+    (0..count)
+        .map(|k| {
+            let t = if count == 1 {
+                0.5
+            } else {
+                k as f64 / (count - 1) as f64
+            };
+            let le = hi.ln() + t * (lo.ln() - hi.ln());
+            (le.exp(), (ai - aa + (bi - ba) * le).exp())
+        })
+        .collect()
 }

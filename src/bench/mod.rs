@@ -2,7 +2,9 @@
 
 pub mod adapt_run;
 pub mod convergence;
+pub mod convergence_figure;
 pub mod couette;
+pub mod couette_sweep;
 pub mod peers;
 pub mod reinit;
 pub mod zalesak;

@@ -28,6 +28,7 @@
 //! the exact distance interpolated on the peer's mesh, the two-sided Hausdorff distance between
 //! that zero level and the exact boundary, and the wall time of the peer's runs.
 
+use crate::adapt::sources::derivatives_at_scale;
 use crate::adapt::{adapt, AdaptOptions, AnalyticLevelSetSource, LevelSetMetric};
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
@@ -78,7 +79,25 @@ pub fn target_metric(eps: f64) -> LevelSetMetric {
 
 /// The metric `m` and the exact signed distance at every vertex of `mesh`.
 pub fn evaluate_target(mesh: &Mesh2, m: &LevelSetMetric) -> (Vec<Sym2>, Vec<f64>) {
-    AnalyticLevelSetSource::new(zalesak_exact, *m).evaluate(mesh)
+    evaluate_target_with(mesh, m, None)
+}
+
+/// [`evaluate_target`] with the kinks of the distance resolved at the scale `k hmin` when
+/// `kink_scale = Some(k)` ([`crate::adapt::sources::derivatives_at_scale`]: the metric our
+/// convergence sweep adapts to, so that the peers get the same target).
+pub fn evaluate_target_with(
+    mesh: &Mesh2,
+    m: &LevelSetMetric,
+    kink_scale: Option<f64>,
+) -> (Vec<Sym2>, Vec<f64>) {
+    match kink_scale {
+        None => AnalyticLevelSetSource::new(zalesak_exact, *m).evaluate(mesh),
+        Some(k) => {
+            let delta = k * m.hmin;
+            AnalyticLevelSetSource::new(|p| derivatives_at_scale(zalesak(), p, delta), *m)
+                .evaluate(mesh)
+        }
+    }
 }
 
 /// The uniform background mesh: `n x n` vertices on `[-2, 2]²` (right diagonals).
@@ -441,6 +460,9 @@ pub struct PeerOptions {
     pub work_dir: PathBuf,
     /// BAMG's `nbvx` (maximal vertex count; FreeFem's default 9000 is too small here).
     pub bamg_max_vertices: usize,
+    /// Kinks of the distance resolved at this multiple of `hmin` in the metric given to the
+    /// peers ([`evaluate_target_with`]); `None` (default): the plain eq. (6) metric.
+    pub kink_scale: Option<f64>,
 }
 
 impl Default for PeerOptions {
@@ -451,6 +473,7 @@ impl Default for PeerOptions {
             timeout: Duration::from_secs(600),
             work_dir: std::env::temp_dir().join("anisomesh-peers"),
             bamg_max_vertices: 5_000_000,
+            kink_scale: None,
         }
     }
 }
@@ -519,7 +542,7 @@ fn call_peer(
     dir: &Path,
     k: usize,
 ) -> Result<(Mesh2, f64, Option<f64>)> {
-    let (metric, u) = evaluate_target(mesh, m);
+    let (metric, u) = evaluate_target_with(mesh, m, opts.kink_scale);
     let stem = format!("in{k}");
     let out = dir.join(format!("out{k}.mesh"));
     let _ = std::fs::remove_file(&out);
@@ -601,19 +624,29 @@ fn call_peer(
     Ok((io::read_medit2(&out)?, run.seconds, own))
 }
 
-/// Runs one external peer at accuracy `eps`: the fixed point from the background grid, then
-/// [`measure`]. Never fails: a missing program or a failed call is in the result's status.
+/// Runs one external peer at accuracy `eps` (the metric [`target_metric`]): the fixed point from
+/// the background grid, then [`measure`]. Never fails: a missing program or a failed call is in
+/// the result's status.
 pub fn run_peer(kind: PeerKind, eps: f64, opts: &PeerOptions) -> PeerResult {
     if kind == PeerKind::Anisomesh {
         return run_anisomesh(eps, opts);
     }
+    run_peer_with(kind, &target_metric(eps), opts)
+}
+
+/// Runs one external peer with the level-set metric `m` (any `eps`, bounds, band): the fixed
+/// point "evaluate at the current vertices → adapt" ([`PeerOptions::iterations`] calls) from the
+/// background grid, then [`measure`] against `m`. Never fails: a missing program or a failed call
+/// is in the result's status; [`PeerKind::Anisomesh`] is not external and gives a failed result.
+pub fn run_peer_with(kind: PeerKind, m: &LevelSetMetric, opts: &PeerOptions) -> PeerResult {
+    let eps = m.eps;
     let Some(name) = kind.program() else {
-        return PeerResult::failed(kind, eps, "no program");
+        return PeerResult::failed(kind, eps, "not an external peer");
     };
     let Some(exe) = find_program(name) else {
         return PeerResult::unavailable(kind, eps, format!("{name} not found on PATH"));
     };
-    let m = target_metric(eps);
+    let m = *m;
     let dir = opts.work_dir.join(format!("{}_eps{eps:e}", kind.slug()));
     let go = || -> Result<PeerResult> {
         std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;

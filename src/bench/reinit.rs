@@ -77,6 +77,20 @@ pub struct Row {
     /// Redistancing statistics (not in the JSON).
     #[serde(skip)]
     pub report: PprReport,
+    /// Wall time of the case (mesh, interpolation, redistancing, errors), seconds.
+    #[serde(skip)]
+    pub secs: f64,
+    /// Peak resident memory of the process after the case (`VmHWM`, MiB; `None` off Linux).
+    #[serde(skip)]
+    pub peak_mib: Option<f64>,
+}
+
+/// Peak resident set size of this process in MiB (`VmHWM` of `/proc/self/status`).
+pub fn peak_rss_mib() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
 }
 
 /// One convergence table.
@@ -163,6 +177,7 @@ fn table_opts(k: usize) -> PprOptions {
     PprOptions {
         degree: k,
         extend: false,
+        layers: 1,
         ..PprOptions::default()
     }
 }
@@ -356,8 +371,25 @@ fn split8(s: &[[f64; 4]; 4]) -> [[[f64; 4]; 4]; 8] {
     ]
 }
 
-/// The sphere test of 003 §8 (Fig. 8.4): relative volume errors after `0..=reps` redistancings.
+/// The sphere test of 003 §8 (Fig. 8.4): relative volume errors `e^n_Vol = |V^n - V| / V`
+/// after `n = 0..=reps` redistancings.
 pub fn sphere_drift(
+    level: u32,
+    k: usize,
+    reps: usize,
+    bar: Option<&ProgressBar>,
+) -> Result<Vec<f64>> {
+    Ok(sphere_drift_signed(level, k, reps, bar)?
+        .into_iter()
+        .map(f64::abs)
+        .collect())
+}
+
+/// As [`sphere_drift`] but signed, `(V^n - V) / V` (negative: the zero level lies inside the
+/// sphere). `d̃^0_h = I_h d^{ex}` on the level-`ℓ` mesh refined near the sphere of radius 0.25,
+/// then `d̃^n_h` = PPR redistancing of `d̃^{n-1}_h` (initialisation on two layers of cells, then
+/// fast marching).
+pub fn sphere_drift_signed(
     level: u32,
     k: usize,
     reps: usize,
@@ -373,10 +405,10 @@ pub fn sphere_drift(
         degree: k,
         ..PprOptions::default()
     };
-    let mut errs = vec![((negative_volume(&m, &f, k) - exact) / exact).abs()];
+    let mut errs = vec![(negative_volume(&m, &f, k) - exact) / exact];
     for _ in 0..reps {
         f = redistance_ppr_3d(&m.points, &m.tets, &f, &opts)?.values;
-        errs.push(((negative_volume(&m, &f, k) - exact) / exact).abs());
+        errs.push((negative_volume(&m, &f, k) - exact) / exact);
         if let Some(b) = bar {
             b.inc(1);
         }
@@ -463,49 +495,86 @@ fn with_orders(mut rows: Vec<Row>) -> Vec<Row> {
 }
 
 fn print_table(t: &Table) {
+    let pap = if t.dim == 3 {
+        paper(t.alpha, t.k)
+    } else {
+        None
+    };
+    let which = match t.alpha {
+        1 => "   [paper: 003 Table 8.1]",
+        10 => "   [paper: 003 Table 8.2]",
+        50 => "   [paper: 003 Table 8.3]",
+        _ => "",
+    };
     println!(
         "\n{} ({}D), k = {}, alpha = {}{}",
         t.name,
         t.dim,
         t.k,
         t.alpha,
-        if t.dim == 3 {
-            "   [paper: 003 table 8.x, same level]"
-        } else {
-            ""
-        }
+        if pap.is_some() { which } else { "" }
     );
     println!(
-        "{:>3} {:>10} {:>10} {:>6} {:>10} {:>6} {:>5} {:>9} {:>9}",
-        "l", "h", "e_inf", "order", "e_grad", "order", "n.c.", "paper e", "paper eg"
+        "{:>3} {:>9} {:>9} {:>5} {:>9} {:>5} | {:>8} {:>5} {:>8} {:>5} | {:>9} {:>9} {:>4} {:>7} {:>7}",
+        "l", "h", "e_inf", "ord", "e_grad", "ord", "paper e", "ord", "paper eg", "ord", "cells",
+        "nodes", "n.c.", "s", "MiB"
     );
-    let pap = if t.dim == 3 {
-        paper(t.alpha, t.k)
-    } else {
-        None
-    };
-    for r in &t.rows {
-        let o = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
-        let (pe, pg) = match pap {
-            Some(p) if (3..=8).contains(&r.level) => {
-                let (a, b) = p[(r.level - 3) as usize];
-                (format!("{a:.2e}"), format!("{b:.2e}"))
-            }
-            _ => ("-".into(), "-".into()),
+    let o = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
+    for (i, r) in t.rows.iter().enumerate() {
+        let at = |l: u32| {
+            pap.filter(|_| (3..=8).contains(&l))
+                .map(|p| p[(l - 3) as usize])
+        };
+        let (pe, pg) = at(r.level).map_or(("-".into(), "-".into()), |(a, b)| {
+            (format!("{a:.2e}"), format!("{b:.2e}"))
+        });
+        // The paper's orders from its own values (levels differ by one: h halves).
+        let prev = (i > 0 && t.rows[i - 1].level + 1 == r.level)
+            .then(|| at(r.level - 1))
+            .flatten();
+        let (po, pgo) = match (prev, at(r.level)) {
+            (Some(a), Some(b)) => (Some((a.0 / b.0).log2()), Some((a.1 / b.1).log2())),
+            _ => (None, None),
         };
         println!(
-            "{:>3} {:>10.3e} {:>10.3e} {:>6} {:>10.3e} {:>6} {:>5} {:>9} {:>9}",
+            "{:>3} {:>9.3e} {:>9.3e} {:>5} {:>9.3e} {:>5} | {:>8} {:>5} {:>8} {:>5} | {:>9} {:>9} {:>4} {:>7.1} {:>7}",
             r.level,
             r.h,
             r.e_inf,
             o(r.order_inf),
             r.e_grad,
             o(r.order_grad),
-            r.report.not_converged,
             pe,
-            pg
+            o(po),
+            pg,
+            o(pgo),
+            r.report.cells,
+            r.report.nodes,
+            r.report.not_converged,
+            r.secs,
+            r.peak_mib.map_or("-".into(), |m| format!("{m:.0}")),
         );
     }
+}
+
+/// One line of relative volume errors at repetitions 0, 1, 10, 20, 50 and the last (only those
+/// that were run), with the paper's statement beside them.
+pub fn drift_line(k: usize, level: u32, e: &[f64]) -> String {
+    let last = e.len().saturating_sub(1);
+    let mut marks: Vec<usize> = [0, 1, 10, 20, 50]
+        .into_iter()
+        .filter(|&n| n < last)
+        .collect();
+    marks.push(last);
+    let vals: Vec<String> = marks
+        .iter()
+        .map(|&n| format!("e^{n} = {:.3e}", e[n]))
+        .collect();
+    format!(
+        "sphere r = 0.25, k = {k}, level {level}: {}  (003 Fig. 8.4, levels 5-6: a mild \
+         shrinking, weaker for k = 2; the text gives no numbers)",
+        vals.join(", ")
+    )
 }
 
 /// Run the experiments of 003 §8 (module documentation), print the tables beside the paper's
@@ -544,6 +613,7 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
         let mut rows = Vec::new();
         for &l in levels {
             let a = f64::from(alpha);
+            let t0 = std::time::Instant::now();
             let (h, e_inf, e_grad, report) = match name {
                 "circle" => circle_case(l, k, a)?,
                 "zalesak" => zalesak_case(l, k, a)?,
@@ -557,6 +627,8 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
                 e_grad,
                 order_grad: None,
                 report,
+                secs: t0.elapsed().as_secs_f64(),
+                peak_mib: peak_rss_mib(),
             });
             bar.inc(1);
         }
@@ -580,16 +652,7 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
             let e = sphere_drift(l, k, opts.volume_reps, Some(&bar))?;
             bar.finish_and_clear();
             if opts.print {
-                let at = |n: usize| e.get(n).copied().unwrap_or(f64::NAN);
-                println!(
-                    "\nsphere r = 0.25, k = {k}, level {l}: e_Vol^0 = {:.3e}, ^10 = {:.3e}, ^50 = {:.3e}, ^{} = {:.3e} \
-                     (003 Fig. 8.4 gives no numbers in the text: a mild shrinking, weaker for k = 2)",
-                    at(0),
-                    at(10),
-                    at(50),
-                    e.len() - 1,
-                    at(e.len() - 1)
-                );
+                println!("\n{}", drift_line(k, l, &e));
             }
             volume_drift.push(Drift {
                 k,

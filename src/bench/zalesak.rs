@@ -9,6 +9,12 @@
 //! without mass correction at about 6,500 vertices per adapted mesh), and the distance between
 //! the final and the exact interface.
 
+mod figures;
+mod sources;
+
+pub use figures::write_figures;
+pub use sources::ErrorSources;
+
 use crate::adapt::{AdaptOptions, LevelSetMetric};
 use crate::advect::adapter::LevelSetAdapter;
 use crate::advect::fixed_point::{advance_period, Adapter, FixedPointOptions};
@@ -16,6 +22,7 @@ use crate::advect::{self, AdvectOptions, Rotation};
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::levelset::interface::{extract_zero_level, interface_distance, InterfaceError};
+use crate::levelset::redistance::redistance_geometric;
 use crate::levelset::shapes::{Shape, Zalesak};
 use crate::mesh::{GridPattern, Mesh2};
 use serde::Serialize;
@@ -54,17 +61,26 @@ pub struct ZalesakOptions {
     /// The level-set metric (004 eq. (6): ε, band, gradation); its `hmin`, `hmax` and
     /// `isotropic` are taken from [`ZalesakMesh::Adapted`].
     pub metric: LevelSetMetric,
+    /// The remeshing options of every adaptation.
+    pub adapt: AdaptOptions,
+    /// Adaptations of the initial mesh to the exact level set (from a 40 x 40 grid).
+    pub initial_rounds: usize,
     /// Maximal fixed-point iterations per period (adapted meshes only).
     pub fixed_point_iterations: usize,
     /// Stop the fixed point when the mean L1 change of `u^{n+1}` is below this (004 §3.5).
     pub fixed_point_tol: f64,
     /// The advection step (foot scheme, evaluation, form).
     pub advect: AdvectOptions,
+    /// Geometric redistancing (004 §2.2) of `u^{n+1}` after each period.
+    pub redistance: bool,
     /// Restore the initial area after each period (004 §5.1 "mass correction").
     pub mass_correction: bool,
+    /// Measure the error sources separately ([`ErrorSources`]; costs two extra advections per
+    /// period).
+    pub sources: bool,
     /// Also run a uniform mesh and an isotropic adapted mesh of similar vertex count.
     pub compare: bool,
-    /// Output directory for `zalesak.json` and `zalesak.csv` (none: no files).
+    /// Output directory for `zalesak.json`, `zalesak.csv` and the figures (none: no files).
     pub out_dir: Option<PathBuf>,
 }
 
@@ -76,21 +92,28 @@ impl Default for ZalesakOptions {
                 stretching: 200.0,
                 isotropic: false,
             },
-            // Pinned (not inherited from LevelSetMetric::default): band 4e-3 gave 6,958 vertices
-            // mean, area -2.7e-4, perimeter -8.4e-4; band 5e-4 gives 3,589 vertices, area
-            // -3.6e-4, perimeter -2.6e-3 after one revolution.
+            // Pinned (not inherited from LevelSetMetric::default). Measured (one revolution,
+            // relative area / perimeter error, vertices mean / max, CPU seconds): band 2e-3:
+            // -2.8e-4 / -1.2e-3, 4,994 / 5,277, 5.0 s; band 3e-3: -2.4e-4 / -1.2e-3,
+            // 5,987 / 6,255, 6.6 s; band 4e-3: -2.7e-4 / -8.4e-4, 6,958 / 7,353 (over the 7,000
+            // target); band 1e-3: -2.3e-4 / -2.1e-3, 4,055 / 4,360, 4.2 s but interface
+            // distance 5.9e-3 (1.6e-3 at band 2e-3). README "Zalesak slotted-disk rotation".
             metric: LevelSetMetric {
                 eps: 1.2e-3,
                 grade: 1.0,
-                band: 4e-3,
+                band: 2e-3,
                 ..LevelSetMetric::default()
             },
+            adapt: AdaptOptions::default(),
+            initial_rounds: 4,
             periods: 16,
             revolutions: 1.0,
             fixed_point_iterations: 5,
             fixed_point_tol: 1e-4,
             advect: AdvectOptions::default(),
+            redistance: false,
             mass_correction: false,
+            sources: false,
             compare: false,
             out_dir: None,
         }
@@ -108,6 +131,26 @@ pub struct ZalesakSample {
     pub fixed_point_iterations: usize,
     /// Mean L1 change of `u^{n+1}` at the last fixed-point iteration (0 on a fixed mesh).
     pub l1_change: f64,
+    /// Cumulative wall-clock seconds at the end of the period.
+    pub seconds: f64,
+}
+
+/// A mesh and the level set on it at one time (kept for the figures, not serialised).
+#[derive(Debug, Clone)]
+pub struct Snapshot {
+    pub period: usize,
+    pub time: f64,
+    pub mesh: Mesh2,
+    pub u: Vec<f64>,
+}
+
+/// What the figures need: the meshes at the rotations `k π/2` (and the last one), and one
+/// adapted mesh of a period with the level set at the period's start (on the previous mesh).
+#[derive(Debug, Clone, Default)]
+pub struct ZalesakFrames {
+    pub snapshots: Vec<Snapshot>,
+    /// `(start of the period on its own mesh, end of the period on the adapted mesh)`.
+    pub period: Option<(Snapshot, Snapshot)>,
 }
 
 /// The outcome of a run.
@@ -131,9 +174,13 @@ pub struct ZalesakReport {
     pub adapt_seconds: f64,
     pub advect_seconds: f64,
     pub series: Vec<ZalesakSample>,
+    /// The error sources measured separately (option `sources`).
+    pub sources: Option<ErrorSources>,
     /// The comparison runs (`--compare`): uniform and isotropic adapted meshes.
     pub compare_uniform: Option<Box<ZalesakReport>>,
     pub compare_isotropic: Option<Box<ZalesakReport>>,
+    #[serde(skip)]
+    pub frames: ZalesakFrames,
 }
 
 impl ZalesakReport {
@@ -145,7 +192,24 @@ impl ZalesakReport {
         )
     }
 
-    /// A short table: measured, exact and paper values.
+    /// A short name of the mesh family.
+    pub fn label(&self) -> String {
+        match self.mesh {
+            ZalesakMesh::Uniform { n } => format!("uniform {n}x{n}"),
+            ZalesakMesh::Adapted {
+                hmin, isotropic, ..
+            } => format!(
+                "{} hmin {hmin:.1e}",
+                if isotropic {
+                    "isotropic"
+                } else {
+                    "anisotropic"
+                }
+            ),
+        }
+    }
+
+    /// The table: measured, exact and paper values, then one line per comparison run.
     pub fn summary(&self) -> String {
         let (ea, ep) = self.relative_errors();
         let mut s = format!(
@@ -164,12 +228,45 @@ impl ZalesakReport {
             "perim1", self.perimeter_final, EXACT_PERIMETER, PAPER[3],
             ea, ep, self.interface_to_exact_max, self.exact_to_interface_max,
         );
-        for c in [&self.compare_uniform, &self.compare_isotropic]
-            .into_iter()
-            .flatten()
-        {
-            s.push_str("--- comparison ---\n");
-            s.push_str(&c.summary());
+        if let Some(src) = &self.sources {
+            s.push_str(&src.table());
+        }
+        let runs: Vec<&ZalesakReport> = std::iter::once(self)
+            .chain(
+                [&self.compare_uniform, &self.compare_isotropic]
+                    .into_iter()
+                    .flatten()
+                    .map(|b| b.as_ref()),
+            )
+            .collect();
+        if runs.len() > 1 {
+            s.push_str(&format!(
+                "{:<26} {:>9} {:>9} {:>11} {:>11} {:>11} {:>11} {:>9} {:>8}\n",
+                "comparison",
+                "verts",
+                "max",
+                "area0",
+                "area1",
+                "perim0",
+                "perim1",
+                "iface",
+                "seconds"
+            ));
+            for r in runs {
+                let rel = |a: f64, e: f64| (a - e) / e;
+                s.push_str(&format!(
+                    "{:<26} {:>9.0} {:>9} {:>+11.3e} {:>+11.3e} {:>+11.3e} {:>+11.3e} {:>9.2e} {:>8.1}\n",
+                    r.label(),
+                    r.vertices_mean,
+                    r.vertices_max,
+                    rel(r.area_initial, EXACT_AREA),
+                    rel(r.area_final, EXACT_AREA),
+                    rel(r.perimeter_initial, EXACT_PERIMETER),
+                    rel(r.perimeter_final, EXACT_PERIMETER),
+                    r.interface_to_exact_max.max(r.exact_to_interface_max),
+                    r.seconds
+                ));
+            }
         }
         s
     }
@@ -182,11 +279,25 @@ pub fn interface_distances(mesh: &Mesh2, u: &[f64], shape: &Zalesak) -> Result<I
     Ok(interface_distance(&lines, shape, 4))
 }
 
+/// The exact level set at time `t`: the signed distance to the slotted disk rotated by `t`.
+pub fn exact_level_set(shape: &Zalesak, mesh: &Mesh2, t: f64) -> Vec<f64> {
+    let (s, c) = t.sin_cos();
+    mesh.points
+        .iter()
+        .map(|&p| shape.distance(DVec2::new(c * p.x + s * p.y, -s * p.x + c * p.y)))
+        .collect()
+}
+
 /// Runs the Zalesak rotation: on a fixed uniform mesh, or with anisotropic (or isotropic)
 /// adaptation and the transient fixed point of 004 §3.5 ([`LevelSetAdapter`]).
 pub fn run(opts: &ZalesakOptions) -> Result<ZalesakReport> {
+    run_keep(opts, opts.out_dir.is_some())
+}
+
+/// [`run`], keeping the figure frames when `keep`.
+fn run_keep(opts: &ZalesakOptions, keep: bool) -> Result<ZalesakReport> {
     match opts.mesh {
-        ZalesakMesh::Uniform { .. } => run_with_adapter(opts, None),
+        ZalesakMesh::Uniform { .. } => run_inner(opts, None, keep),
         ZalesakMesh::Adapted {
             hmin,
             stretching,
@@ -198,8 +309,8 @@ pub fn run(opts: &ZalesakOptions) -> Result<ZalesakReport> {
                 isotropic,
                 ..opts.metric
             };
-            let mut a = LevelSetAdapter::new(metric, AdaptOptions::default())?;
-            run_with_adapter(opts, Some(&mut a))
+            let mut a = LevelSetAdapter::new(metric, opts.adapt.clone())?;
+            run_inner(opts, Some(&mut a), keep)
         }
     }
 }
@@ -223,11 +334,25 @@ fn initial_mesh(
     Ok(mesh)
 }
 
+/// Whether period `k` (of `steps` per revolution) ends at a multiple of a quarter turn.
+fn quarter_turn(k: usize, steps: usize, dt: f64) -> bool {
+    let q = k as f64 * dt / std::f64::consts::FRAC_PI_2;
+    (q - q.round()).abs() < 1e-9 || k == steps
+}
+
 /// Runs the Zalesak rotation from a uniform mesh, adapting every period with `adapter` when
 /// one is given (transient fixed point, 004 §3.5).
 pub fn run_with_adapter(
     opts: &ZalesakOptions,
+    adapter: Option<&mut dyn Adapter>,
+) -> Result<ZalesakReport> {
+    run_inner(opts, adapter, opts.out_dir.is_some())
+}
+
+fn run_inner(
+    opts: &ZalesakOptions,
     mut adapter: Option<&mut dyn Adapter>,
+    keep: bool,
 ) -> Result<ZalesakReport> {
     if opts.periods == 0 || opts.revolutions.is_nan() || opts.revolutions <= 0.0 {
         return Err(Error::InvalidInput(format!(
@@ -241,7 +366,7 @@ pub fn run_with_adapter(
         ZalesakMesh::Uniform { n } => n,
         ZalesakMesh::Adapted { .. } => 40,
     };
-    let mut mesh = initial_mesh(n, &shape, adapter.as_deref_mut(), 4)?;
+    let mut mesh = initial_mesh(n, &shape, adapter.as_deref_mut(), opts.initial_rounds)?;
     let mut adapt_seconds = start.elapsed().as_secs_f64();
     let mut advect_seconds = 0.0;
     let mut u: Vec<f64> = mesh.points.iter().map(|&p| shape.distance(p)).collect();
@@ -251,6 +376,18 @@ pub fn run_with_adapter(
     let total = 2.0 * std::f64::consts::PI * opts.revolutions;
     let steps = (opts.periods as f64 * opts.revolutions).round().max(1.0) as usize;
     let dt = total / steps as f64;
+    // The period whose adapted mesh is drawn: the one ending at 3π/8 (or the first).
+    let shown_period = (steps * 3 / 16).max(1);
+    let mut frames = ZalesakFrames::default();
+    let mut sources = opts.sources.then(ErrorSources::default);
+    if keep {
+        frames.snapshots.push(Snapshot {
+            period: 0,
+            time: 0.0,
+            mesh: mesh.clone(),
+            u: u.clone(),
+        });
+    }
     let mut series = Vec::with_capacity(steps + 1);
     let mut fp_iters = Vec::with_capacity(steps);
     let mut verts = vec![mesh.n_points()];
@@ -262,11 +399,13 @@ pub fn run_with_adapter(
         vertices: mesh.n_points(),
         fixed_point_iterations: 0,
         l1_change: 0.0,
+        seconds: start.elapsed().as_secs_f64(),
     });
     for k in 0..steps {
         let (t0, t1) = (k as f64 * dt, (k + 1) as f64 * dt);
         let iters;
         let mut l1_change = 0.0;
+        let (old_mesh, old_u) = (mesh.clone(), u.clone());
         match adapter.as_deref_mut() {
             Some(a) => {
                 let fp = FixedPointOptions {
@@ -290,8 +429,37 @@ pub fn run_with_adapter(
                 iters = 1;
             }
         }
+        if let Some(src) = sources.as_mut() {
+            src.period(&shape, &old_mesh, &mesh, &u, t0, t1, opts)?;
+        }
+        if opts.redistance {
+            let ta = Instant::now();
+            let r = redistance_geometric(&mesh, &u)?;
+            if let Some(src) = sources.as_mut() {
+                src.redistance(&mesh, &u, &r)?;
+            }
+            u = r;
+            advect_seconds += ta.elapsed().as_secs_f64();
+        }
         if opts.mass_correction {
             advect::correct_mass(&mesh, &mut u, area_initial, 1e-13)?;
+        }
+        if keep && k + 1 == shown_period {
+            let snap = |period, time, mesh: &Mesh2, u: &[f64]| Snapshot {
+                period,
+                time,
+                mesh: mesh.clone(),
+                u: u.to_vec(),
+            };
+            frames.period = Some((snap(k, t0, &old_mesh, &old_u), snap(k + 1, t1, &mesh, &u)));
+        }
+        if keep && quarter_turn(k + 1, steps, dt) {
+            frames.snapshots.push(Snapshot {
+                period: k + 1,
+                time: t1,
+                mesh: mesh.clone(),
+                u: u.clone(),
+            });
         }
         fp_iters.push(iters);
         verts.push(mesh.n_points());
@@ -303,8 +471,10 @@ pub fn run_with_adapter(
             vertices: mesh.n_points(),
             fixed_point_iterations: iters,
             l1_change,
+            seconds: start.elapsed().as_secs_f64(),
         });
     }
+    let seconds = start.elapsed().as_secs_f64();
     // After a whole number of revolutions the exact interface is the initial one.
     let turns = opts.revolutions.fract().abs() < 1e-12;
     let (imax, back) = if turns {
@@ -313,6 +483,9 @@ pub fn run_with_adapter(
     } else {
         (f64::NAN, f64::NAN)
     };
+    if let Some(src) = sources.as_mut() {
+        src.finish(&shape, &mesh, &u, total, area_initial, perimeter_initial)?;
+    }
     let last = series.last().cloned().unwrap_or_else(|| series[0].clone());
     let mut report = ZalesakReport {
         mesh: opts.mesh,
@@ -325,12 +498,14 @@ pub fn run_with_adapter(
         vertices_mean: verts.iter().sum::<usize>() as f64 / verts.len() as f64,
         vertices_max: verts.iter().copied().max().unwrap_or(0),
         fixed_point_iterations: fp_iters,
-        seconds: start.elapsed().as_secs_f64(),
+        seconds,
         adapt_seconds,
         advect_seconds,
         series,
+        sources,
         compare_uniform: None,
         compare_isotropic: None,
+        frames,
     };
     if opts.compare {
         let m = ((report.vertices_mean.sqrt() - 1.0).round() as usize).max(2);
@@ -340,12 +515,15 @@ pub fn run_with_adapter(
             out_dir: None,
             ..opts.clone()
         };
-        report.compare_uniform = Some(Box::new(run_with_adapter(&cmp, None)?));
+        report.compare_uniform = Some(Box::new(run_inner(&cmp, None, keep)?));
         if let ZalesakMesh::Adapted {
             hmin, stretching, ..
         } = opts.mesh
         {
-            let h = isotropic_hmin_for(report.vertices_mean, hmin, stretching, opts)?;
+            // Matched on the initial mesh (one position of the disk; the meshes of the periods
+            // carry two), so that the mean counts over the revolution are comparable.
+            let target = report.series[0].vertices as f64;
+            let h = isotropic_hmin_for(target, hmin, stretching, opts)?;
             let iso = ZalesakOptions {
                 mesh: ZalesakMesh::Adapted {
                     hmin: h,
@@ -356,11 +534,12 @@ pub fn run_with_adapter(
                 out_dir: None,
                 ..opts.clone()
             };
-            report.compare_isotropic = Some(Box::new(run(&iso)?));
+            report.compare_isotropic = Some(Box::new(run_keep(&iso, keep)?));
         }
     }
     if let Some(dir) = &opts.out_dir {
         write_outputs(dir, &report)?;
+        write_figures(dir, &report)?;
     }
     Ok(report)
 }
@@ -381,8 +560,8 @@ fn isotropic_hmin_for(
             isotropic: true,
             ..opts.metric
         };
-        let mut a = LevelSetAdapter::new(metric, AdaptOptions::default())?;
-        Ok(initial_mesh(40, &shape, Some(&mut a), 3)?.n_points() as f64)
+        let mut a = LevelSetAdapter::new(metric, opts.adapt.clone())?;
+        Ok(initial_mesh(40, &shape, Some(&mut a), opts.initial_rounds)?.n_points() as f64)
     };
     // Isotropic meshes need about ten times more vertices at equal hmin (004 §5.1).
     let mut h0 = hmin * 10.0;
@@ -412,18 +591,20 @@ pub fn write_outputs(dir: &std::path::Path, report: &ZalesakReport) -> Result<()
     let json = serde_json::to_vec_pretty(report)
         .map_err(|e| Error::InvalidInput(format!("zalesak report serialisation: {e}")))?;
     write_atomic(&dir.join("zalesak.json"), &json)?;
-    let mut csv =
-        String::from("period,time,area,perimeter,vertices,fixed_point_iterations,l1_change\n");
+    let mut csv = String::from(
+        "period,time,area,perimeter,vertices,fixed_point_iterations,l1_change,seconds\n",
+    );
     for s in &report.series {
         csv.push_str(&format!(
-            "{},{:.12},{:.12},{:.12},{},{},{:.3e}\n",
+            "{},{:.12},{:.12},{:.12},{},{},{:.3e},{:.3}\n",
             s.period,
             s.time,
             s.area,
             s.perimeter,
             s.vertices,
             s.fixed_point_iterations,
-            s.l1_change
+            s.l1_change,
+            s.seconds
         ));
     }
     write_atomic(&dir.join("zalesak.csv"), csv.as_bytes())

@@ -1,22 +1,62 @@
 //! The benchmark-flow commands: `zalesak` and `reinit` (thin wrappers over `anisomesh::bench`).
 
-use anisomesh::bench::{convergence, couette, reinit, zalesak};
+use anisomesh::bench::{convergence, couette, couette_sweep, reinit, zalesak};
 use anisomesh::Result;
 use clap::Args;
 use std::path::PathBuf;
 
-/// Options of `anisomesh zalesak` (defaults: 004 §5.1).
+/// Options of `anisomesh zalesak` (defaults: 004 §5.1 and the tuned metric of
+/// `bench::zalesak::ZalesakOptions::default`).
 #[derive(Debug, Args)]
 pub struct ZalesakArgs {
     /// Also run a uniform mesh and an isotropic adapted mesh of similar vertex count.
     #[arg(long)]
     compare: bool,
+    /// Measure the error sources separately (representation, feet, transfer, redistancing).
+    #[arg(long)]
+    sources: bool,
     /// Restore the initial area after each period (004 §5.1 mass correction).
     #[arg(long)]
     mass_correction: bool,
+    /// Geometric redistancing (004 §2.2) after each period.
+    #[arg(long)]
+    redistance: bool,
     /// Periods per revolution (16 = steps of pi/8).
     #[arg(long, default_value_t = 16)]
     periods: usize,
+    /// Smallest mesh size.
+    #[arg(long)]
+    hmin: Option<f64>,
+    /// hmax / hmin.
+    #[arg(long)]
+    stretching: Option<f64>,
+    /// Interface error bound of 004 eq. (6).
+    #[arg(long)]
+    eps: Option<f64>,
+    /// Half-width of the band where eq. (6) applies.
+    #[arg(long)]
+    band: Option<f64>,
+    /// Growth rate of the sizes outside the band.
+    #[arg(long)]
+    grade: Option<f64>,
+    /// Isotropic adaptation instead of anisotropic.
+    #[arg(long)]
+    isotropic: bool,
+    /// A fixed uniform n x n mesh instead of adaptation.
+    #[arg(long)]
+    uniform: Option<usize>,
+    /// Maximal fixed-point iterations per period.
+    #[arg(long)]
+    fixed_point_iterations: Option<usize>,
+    /// Fixed-point tolerance on the mean L1 change of u^{n+1}.
+    #[arg(long)]
+    fixed_point_tol: Option<f64>,
+    /// Adaptations of the initial mesh.
+    #[arg(long)]
+    initial_rounds: Option<usize>,
+    /// Split/collapse cycle cap of each adaptation.
+    #[arg(long)]
+    max_cycles: Option<usize>,
     /// Output directory (zalesak.json, zalesak.csv, figures).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -24,15 +64,49 @@ pub struct ZalesakArgs {
 
 /// Runs the Zalesak rotation and prints its table.
 pub fn zalesak(a: ZalesakArgs) -> Result<()> {
+    let d = zalesak::ZalesakOptions::default();
+    let (mut hmin, mut stretching) = match d.mesh {
+        zalesak::ZalesakMesh::Adapted {
+            hmin, stretching, ..
+        } => (hmin, stretching),
+        zalesak::ZalesakMesh::Uniform { .. } => (1e-3, 200.0),
+    };
+    hmin = a.hmin.unwrap_or(hmin);
+    stretching = a.stretching.unwrap_or(stretching);
+    let mut metric = d.metric;
+    metric.eps = a.eps.unwrap_or(metric.eps);
+    metric.band = a.band.unwrap_or(metric.band);
+    metric.grade = a.grade.unwrap_or(metric.grade);
+    let mut adapt = d.adapt.clone();
+    adapt.max_cycles = a.max_cycles.unwrap_or(adapt.max_cycles);
     let opts = zalesak::ZalesakOptions {
+        mesh: match a.uniform {
+            Some(n) => zalesak::ZalesakMesh::Uniform { n },
+            None => zalesak::ZalesakMesh::Adapted {
+                hmin,
+                stretching,
+                isotropic: a.isotropic,
+            },
+        },
+        metric,
+        adapt,
+        initial_rounds: a.initial_rounds.unwrap_or(d.initial_rounds),
+        fixed_point_iterations: a.fixed_point_iterations.unwrap_or(d.fixed_point_iterations),
+        fixed_point_tol: a.fixed_point_tol.unwrap_or(d.fixed_point_tol),
         compare: a.compare,
+        sources: a.sources,
+        redistance: a.redistance,
         mass_correction: a.mass_correction,
         periods: a.periods,
         out_dir: Some(a.output.clone()),
-        ..zalesak::ZalesakOptions::default()
+        ..d
     };
     let r = zalesak::run(&opts)?;
     print!("{}", r.summary());
+    println!(
+        "fixed-point iterations per period: {:?}",
+        r.fixed_point_iterations
+    );
     println!("wrote {}", a.output.display());
     Ok(())
 }
@@ -90,6 +164,7 @@ pub fn convergence(a: ConvergenceArgs) -> Result<()> {
         points: a.points,
         quick: a.quick,
         out_dir: Some(a.output),
+        ..Default::default()
     };
     let r = convergence::run(&opts)?;
     print!("{}", r.table());
@@ -103,6 +178,17 @@ pub struct CouetteArgs {
     /// anisotropic mesh adapted to the level set.
     #[arg(long)]
     fitted: bool,
+    /// Viscosity of the cut triangles: the sign of the level set at the quadrature points
+    /// instead of the harmonic mean over the exact cut areas (the default).
+    #[arg(long)]
+    quadrature: bool,
+    /// Print the mesh-convergence table of omega (adapted meshes with both cut-element rules,
+    /// fitted meshes) instead of one run.
+    #[arg(long)]
+    sweep: bool,
+    /// With --sweep: two meshes per family (seconds).
+    #[arg(long)]
+    quick: bool,
     /// Output directory (couette.json, .vtu, PNGs).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -110,10 +196,33 @@ pub struct CouetteArgs {
 
 /// The two-phase Couette flow of 004 §5.1: angular velocity of the rigid inclusion.
 pub fn couette(a: CouetteArgs) -> Result<()> {
+    if a.sweep {
+        let (scales, hs) = if a.quick {
+            (vec![2.0, 1.0], vec![0.01, 0.005])
+        } else {
+            (
+                vec![2.0, 1.4, 1.0, 0.7, 0.5, 0.35],
+                vec![0.01, 0.005, 0.0025, 0.00125],
+            )
+        };
+        let rows = couette_sweep::sweep(&scales, &hs)?;
+        print!("{}", couette_sweep::sweep_table(&rows));
+        return Ok(());
+    }
+    let base = if a.fitted {
+        couette_sweep::fitted_options(5e-3)
+    } else {
+        couette::CouetteOptions::default()
+    };
     let opts = couette::CouetteOptions {
-        fitted: a.fitted,
+        figures: true,
+        interface: if a.quadrature {
+            anisomesh::flows::InterfaceViscosity::Quadrature
+        } else {
+            anisomesh::flows::InterfaceViscosity::Harmonic
+        },
         out_dir: Some(a.output.clone()),
-        ..couette::CouetteOptions::default()
+        ..base
     };
     let r = couette::run(&opts)?;
     println!(

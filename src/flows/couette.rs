@@ -21,8 +21,25 @@ pub struct CouetteCase {
     pub radius: f64,
     pub mu_in: f64,
     pub mu_out: f64,
-    /// Smoothed-Heaviside half-width (0 = sharp sign at the quadrature points).
+    /// Smoothed-Heaviside half-width (0 = sharp sign at the quadrature points); used by
+    /// [`InterfaceViscosity::Quadrature`] only.
     pub width: f64,
+    /// How the triangles cut by the interface get their viscosity.
+    pub interface: InterfaceViscosity,
+}
+
+/// How the Couette viscosity treats the triangles cut by the interface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub enum InterfaceViscosity {
+    /// One viscosity per triangle, the harmonic mean over the exact areas of the two phases
+    /// ([`Viscosity::TwoPhaseHarmonic`]). The default: `ω` depends least on the mesh and the
+    /// Uzawa iteration count stays low on anisotropic meshes (measured in
+    /// `examples/couette_sweep.rs`).
+    #[default]
+    Harmonic,
+    /// The sign (or the smoothed Heaviside of half-width `width`) of the level set at each
+    /// quadrature point ([`Viscosity::TwoPhase`]).
+    Quadrature,
 }
 
 impl Default for CouetteCase {
@@ -34,6 +51,7 @@ impl Default for CouetteCase {
             mu_in: 1.0,
             mu_out: 1e-6,
             width: 0.0,
+            interface: InterfaceViscosity::Harmonic,
         }
     }
 }
@@ -59,13 +77,21 @@ impl CouetteCase {
     /// Solves the case on `mesh` (boundary labels 1..4 all Dirichlet) and fits a rigid motion
     /// inside the disk.
     pub fn solve(&self, mesh: &Mesh2, solver: StokesSolver) -> Result<CouetteResult> {
-        let viscosity = Viscosity::TwoPhase {
-            phi: self.level_set(mesh),
-            mu_in: self.mu_in,
-            mu_out: self.mu_out,
-            width: self.width,
-        };
-        self.solve_with(mesh, viscosity, solver)
+        self.solve_with(mesh, self.viscosity(self.level_set(mesh)), solver)
+    }
+
+    /// The two-phase viscosity of the case for the level set `phi` at the vertices.
+    pub fn viscosity(&self, phi: Vec<f64>) -> Viscosity {
+        let (mu_in, mu_out) = (self.mu_in, self.mu_out);
+        match self.interface {
+            InterfaceViscosity::Harmonic => Viscosity::TwoPhaseHarmonic { phi, mu_in, mu_out },
+            InterfaceViscosity::Quadrature => Viscosity::TwoPhase {
+                phi,
+                mu_in,
+                mu_out,
+                width: self.width,
+            },
+        }
     }
 
     /// As [`CouetteCase::solve`] with a given viscosity (e.g. [`Viscosity::PerElement`] from the

@@ -2,11 +2,12 @@
 
 pub mod couette;
 pub mod stokes;
+mod stokes_uzawa;
 pub mod streamlines;
 
-pub use couette::{CouetteCase, CouetteResult};
+pub use couette::{CouetteCase, CouetteResult, InterfaceViscosity};
 pub use stokes::{
-    rigid_motion_fit, stokes_errors, RigidFit, StokesProblem, StokesReport, StokesSolution,
-    StokesSolver, Viscosity,
+    negative_fraction, rigid_motion_fit, stokes_errors, RigidFit, StokesProblem, StokesReport,
+    StokesSolution, StokesSolver, Viscosity,
 };
 pub use streamlines::{streamline, StreamlineOptions};

@@ -16,6 +16,7 @@
 //! iteration is kept orthogonal to constants and the direct solve adds the constraint `∫ p = 0`
 //! with a Lagrange multiplier; in both cases the returned pressure has zero mean.
 
+use super::stokes_uzawa::{self, ElementData, UzawaInput};
 use crate::error::{Error, Result};
 use crate::fem::assembly::{assemble_matrix, assemble_vector};
 use crate::fem::csr::{dot, norm, Csr};
@@ -23,9 +24,10 @@ use crate::fem::dirichlet::apply_dirichlet;
 use crate::fem::p1::{bary_point, check_areas, live_elements, P1Geom};
 use crate::fem::p1_bubble::{mini_velocity, MiniElement};
 use crate::fem::quadrature::tri_rule;
-use crate::fem::solve::{pcg, CgOptions, Cholesky, Lu};
+use crate::fem::solve::Lu;
 use crate::geom::DVec2;
 use crate::mesh::{Mesh2, NONE};
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// A vector field `x -> v(x)` usable from several threads.
@@ -48,6 +50,40 @@ pub enum Viscosity {
         mu_out: f64,
         width: f64,
     },
+    /// Two phases separated by the zero level of the P1 level set `phi`, with one viscosity per
+    /// triangle: the harmonic mean `1/μ_T = f/μ_in + (1 - f)/μ_out` over the exact area
+    /// fraction `f` of the triangle where `φ_h < 0` ([`negative_fraction`]; the triangle is cut
+    /// along the straight zero line of `φ_h`). For a cut triangle sheared along the interface
+    /// (the fluid sliding past a rigid inclusion, 004 §5.1) the stresses of the two layers are
+    /// equal, so the harmonic mean is the exact effective viscosity of a constant-gradient
+    /// element: the interface sits where `φ_h = 0` to within the level-set error, instead of
+    /// being rounded to the quadrature points. The element viscosity is constant, which also
+    /// keeps the Uzawa iteration count low on anisotropic meshes.
+    TwoPhaseHarmonic {
+        phi: Vec<f64>,
+        mu_in: f64,
+        mu_out: f64,
+    },
+}
+
+/// The exact area fraction of a triangle where the linear interpolant of the vertex values `f`
+/// is negative (0 when no value is negative, 1 when all are). With the lone vertex `a` (the one
+/// whose sign differs from the other two), the corner triangle cut off by the zero line has the
+/// fraction `f_a² / ((f_a - f_b)(f_a - f_c))`.
+pub fn negative_fraction(f: [f64; 3]) -> f64 {
+    let neg = f.iter().filter(|v| **v < 0.0).count();
+    if neg == 0 || neg == 3 {
+        return if neg == 3 { 1.0 } else { 0.0 };
+    }
+    let lone_negative = neg == 1;
+    let a = (0..3).find(|&i| (f[i] < 0.0) == lone_negative).unwrap_or(0);
+    let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+    let corner = (f[a] * f[a] / ((f[a] - f[b]) * (f[a] - f[c]))).clamp(0.0, 1.0);
+    if lone_negative {
+        corner
+    } else {
+        1.0 - corner
+    }
 }
 
 impl Viscosity {
@@ -66,6 +102,18 @@ impl Viscosity {
                 let f = l[0] * v[0] + l[1] * v[1] + l[2] * v[2];
                 mu_in + (mu_out - mu_in) * heaviside(f, *width)
             }
+            Viscosity::TwoPhaseHarmonic { phi, mu_in, mu_out } => {
+                let fr = negative_fraction(mesh.tris[t].map(|i| phi[i as usize]));
+                1.0 / (fr / mu_in + (1.0 - fr) / mu_out)
+            }
+        }
+    }
+
+    /// The level set of a two-phase viscosity.
+    fn level_set(&self) -> Option<&[f64]> {
+        match self {
+            Viscosity::TwoPhase { phi, .. } | Viscosity::TwoPhaseHarmonic { phi, .. } => Some(phi),
+            _ => None,
         }
     }
 
@@ -92,6 +140,13 @@ impl Viscosity {
                 )),
                 None => Ok(()),
             },
+            Viscosity::TwoPhaseHarmonic { phi, mu_in, mu_out } => Viscosity::TwoPhase {
+                phi: phi.clone(),
+                mu_in: *mu_in,
+                mu_out: *mu_out,
+                width: 0.0,
+            }
+            .validate(mesh),
             Viscosity::TwoPhase {
                 phi,
                 mu_in,
@@ -167,6 +222,14 @@ pub struct StokesReport {
     pub converged: bool,
     /// Wall-clock seconds of assembly and solve.
     pub seconds: f64,
+    /// Uzawa only: seconds of the block assembly (element matrices, scatter, Dirichlet
+    /// elimination), of the two Cholesky factorisations (ordering included), of the
+    /// Schur-complement CG (with the final velocity solve).
+    pub assembly_seconds: f64,
+    pub factor_seconds: f64,
+    pub uzawa_seconds: f64,
+    /// Uzawa only: entries of the Cholesky factor of the velocity block.
+    pub factor_nnz: usize,
 }
 
 /// A MINI-element Stokes solution.
@@ -237,7 +300,7 @@ impl<'a> StokesProblem<'a> {
     }
 
     /// Adds the surface-tension force of coefficient `gamma` on the zero level of the
-    /// [`Viscosity::TwoPhase`] level set (interface condition (8) with `K = γ κ`), in the
+    /// two-phase viscosity's level set (interface condition (8) with `K = γ κ`), in the
     /// Laplace–Beltrami form `-γ ∫_Γ div_Γ v` on the piecewise linear interface.
     pub fn surface_tension(mut self, gamma: f64) -> Self {
         self.surface_tension = gamma;
@@ -252,58 +315,56 @@ impl<'a> StokesProblem<'a> {
         let mesh = self.mesh;
         check_areas(mesh)?;
         self.viscosity.validate(mesh)?;
-        if self.surface_tension != 0.0 && !matches!(self.viscosity, Viscosity::TwoPhase { .. }) {
+        if self.surface_tension != 0.0 && self.viscosity.level_set().is_none() {
             return Err(Error::InvalidInput(
                 "surface tension needs a two-phase viscosity (it is applied on its level set)"
                     .into(),
             ));
         }
         let nv = mesh.n_points();
-        let n = 3 * nv;
         let (slots, tris) = live_elements(mesh);
-        let elems: Vec<[u32; 9]> = tris
-            .iter()
-            .map(|v| {
-                let nv = nv as u32;
-                [
-                    v[0],
-                    v[1],
-                    v[2],
-                    nv + v[0],
-                    nv + v[1],
-                    nv + v[2],
-                    2 * nv + v[0],
-                    2 * nv + v[1],
-                    2 * nv + v[2],
-                ]
-            })
-            .collect();
         let zero = |_: DVec2| DVec2::ZERO;
         let force: VecField = self.force.unwrap_or(&zero);
         let element = |e: usize| {
             let t = slots[e];
             MiniElement::new(mesh.tri_points(t), |l| self.viscosity.at(mesh, t, l), force)
         };
-        let mut k = Csr::from_elements(n, &elems)?;
-        assemble_matrix(&mut k, &elems, |e| element(e).k)?;
-        let mut rhs = vec![0.0; n];
-        assemble_vector(&mut rhs, &elems, |e| element(e).f)?;
+        let mut rhs = vec![0.0; 3 * nv];
         self.add_neumann(&mut rhs)?;
         if self.surface_tension != 0.0 {
             self.add_surface_tension(&mut rhs)?;
         }
         let (fixed, values, all_dirichlet) = self.dirichlet_data()?;
-        apply_dirichlet(&mut k, &mut rhs, &fixed, &values)?;
         let (x, mut report) = match solver {
-            StokesSolver::Direct => (
-                solve_direct(&k, &rhs, nv, all_dirichlet)?,
-                StokesReport {
-                    converged: true,
-                    ..Default::default()
-                },
-            ),
+            StokesSolver::Direct => {
+                solve_full_direct(nv, &tris, &element, rhs, &fixed, &values, all_dirichlet)?
+            }
             StokesSolver::Uzawa { rtol, max_iter } => {
-                self.solve_uzawa(&k, &rhs, all_dirichlet, rtol, max_iter)?
+                let rule = tri_rule(5);
+                let input = UzawaInput {
+                    nv,
+                    tris: &tris,
+                    rhs_extra: &rhs,
+                    fixed: &fixed,
+                    values: &values,
+                    all_dirichlet,
+                    rtol,
+                    max_iter,
+                };
+                stokes_uzawa::solve(&input, |e| {
+                    let t = slots[e];
+                    let el = element(e);
+                    ElementData {
+                        k: el.k,
+                        f: el.f,
+                        // Arithmetic mean of μ over the element: a cut element is as stiff
+                        // as its viscous part, so the pressure mass must weight it like it
+                        // (a harmonic mean of the sampled μ made the outer iteration count
+                        // grow with the viscosity ratio).
+                        mu_mean: rule.mean(|l| self.viscosity.at(mesh, t, l)),
+                        area: mesh.tri_area(t),
+                    }
+                })?
             }
         };
         let mut x = x;
@@ -314,13 +375,16 @@ impl<'a> StokesProblem<'a> {
             let mean = dot(&lm, &x[2 * nv..]) / lm.iter().sum::<f64>();
             x[2 * nv..].iter_mut().for_each(|p| *p -= mean);
         }
-        let kx = k.mul(&x);
-        let r: Vec<f64> = kx.iter().zip(&rhs).map(|(a, b)| a - b).collect();
-        report.residual = norm(&r) / norm(&rhs).max(f64::MIN_POSITIVE);
+        let bub: Vec<[f64; 2]> = tris
+            .par_iter()
+            .enumerate()
+            .map(|(e, v)| {
+                let xe: [f64; 9] = std::array::from_fn(|k| x[(k / 3) * nv + v[k % 3] as usize]);
+                element(e).bubble(&xe)
+            })
+            .collect();
         let mut bubbles = vec![DVec2::ZERO; mesh.n_tris()];
-        for (e, dofs) in elems.iter().enumerate() {
-            let xe = dofs.map(|d| x[d as usize]);
-            let b = element(e).bubble(&xe);
+        for (e, b) in bub.iter().enumerate() {
             bubbles[slots[e]] = DVec2::new(b[0], b[1]);
         }
         let sol = StokesSolution {
@@ -408,7 +472,7 @@ impl<'a> StokesProblem<'a> {
     /// piece of the zero level of the P1 level set in each cut triangle (P1 velocity part: the
     /// bubble contribution is dropped, it is of higher order).
     fn add_surface_tension(&self, rhs: &mut [f64]) -> Result<()> {
-        let Viscosity::TwoPhase { phi, .. } = &self.viscosity else {
+        let Some(phi) = self.viscosity.level_set() else {
             return Ok(());
         };
         let mesh = self.mesh;
@@ -444,109 +508,38 @@ impl<'a> StokesProblem<'a> {
         }
         Ok(())
     }
+}
 
-    /// Schur-complement CG for the pressure.
-    fn solve_uzawa(
-        &self,
-        k: &Csr,
-        rhs: &[f64],
-        all_dirichlet: bool,
-        rtol: f64,
-        max_iter: usize,
-    ) -> Result<(Vec<f64>, StokesReport)> {
-        let mesh = self.mesh;
-        let nv = mesh.n_points();
-        let (nu, n) = (2 * nv, 3 * nv);
-        let a = k.sub_block(0..nu);
-        let chol = Cholesky::new(&a)?;
-        let mut c = k.sub_block(nu..n);
-        c.val.iter_mut().for_each(|v| *v = -*v);
-        let m = self.pressure_mass()?;
-        let mchol = Cholesky::new(&m)?;
-        let mut inner = 0usize;
-        let (f, g) = (&rhs[..nu], &rhs[nu..]);
-        let project = |v: &mut [f64]| {
-            if all_dirichlet {
-                let mean = v.iter().sum::<f64>() / v.len() as f64;
-                v.iter_mut().for_each(|x| *x -= mean);
-            }
-        };
-        // rhs of S p = B A⁻¹ F - G
-        let mut af = f.to_vec();
-        chol.solve_in_place(&mut af);
-        inner += 1;
-        let mut b = vec![0.0; nv];
-        k.block_matvec(nu..n, 0..nu, &af, &mut b);
-        b.iter_mut().zip(g).for_each(|(bi, gi)| *bi -= gi);
-        project(&mut b);
-        let mut p = vec![0.0; nv];
-        let inner_cell = std::cell::Cell::new(0usize);
-        let mut tmp_u = vec![0.0; nu];
-        let mut tmp_p = vec![0.0; nv];
-        let opts = CgOptions {
-            rtol,
-            atol: 0.0,
-            max_iter,
-            ..Default::default()
-        };
-        let rep = pcg(
-            |q, y| {
-                // y = B A⁻¹ Bᵀ q + C q
-                k.block_matvec(0..nu, nu..n, q, &mut tmp_u);
-                chol.solve_in_place(&mut tmp_u);
-                inner_cell.set(inner_cell.get() + 1);
-                k.block_matvec(nu..n, 0..nu, &tmp_u, y);
-                c.matvec(q, &mut tmp_p);
-                y.iter_mut().zip(&tmp_p).for_each(|(yi, ci)| *yi += ci);
-                project(y);
-            },
-            |r, z| {
-                z.copy_from_slice(r);
-                mchol.solve_in_place(z);
-                project(z);
-            },
-            &b,
-            &mut p,
-            &opts,
-        );
-        inner += inner_cell.get();
-        // u = A⁻¹ (F - Bᵀ p)
-        let mut u = vec![0.0; nu];
-        k.block_matvec(0..nu, nu..n, &p, &mut u);
-        u.iter_mut().zip(f).for_each(|(ui, fi)| *ui = fi - *ui);
-        chol.solve_in_place(&mut u);
-        inner += 1;
-        u.extend_from_slice(&p);
-        Ok((
-            u,
-            StokesReport {
-                uzawa_iterations: rep.iterations,
-                inner_iterations: inner,
-                converged: rep.converged,
-                ..Default::default()
-            },
-        ))
-    }
-
-    /// The viscosity-weighted pressure mass matrix `∫ μ⁻¹ φ_i φ_j` (degree-5 rule).
-    fn pressure_mass(&self) -> Result<Csr> {
-        let mesh = self.mesh;
-        let (slots, tris) = live_elements(mesh);
-        let mut m = Csr::from_elements(mesh.n_points(), &tris)?;
-        let rule = tri_rule(5);
-        assemble_matrix(&mut m, &tris, |e| {
-            let t = slots[e];
-            let area = mesh.tri_area(t);
-            // Arithmetic mean of μ over the element: a cut element is as stiff as its
-            // viscous part, so it must be weighted like it (harmonic averaging of the sampled
-            // 1/μ made the outer iteration count grow with the viscosity ratio).
-            let mu_mean = rule.mean(|l| self.viscosity.at(mesh, t, l));
-            let d = area / (6.0 * mu_mean);
-            let o = area / (12.0 * mu_mean);
-            [[d, o, o], [o, d, o], [o, o, d]]
-        })?;
-        Ok(m)
-    }
+/// The direct reference: assembles the full condensed saddle-point matrix `K` (dofs
+/// `ux = v, uy = n_v + v, p = 2 n_v + v`), eliminates the Dirichlet dofs symmetrically and
+/// solves by sparse LU. Returns the solution and a report with the residual `‖K x - F‖/‖F‖`.
+fn solve_full_direct(
+    nv: usize,
+    tris: &[[u32; 3]],
+    element: &(impl Fn(usize) -> MiniElement + Sync),
+    mut rhs: Vec<f64>,
+    fixed: &[bool],
+    values: &[f64],
+    all_dirichlet: bool,
+) -> Result<(Vec<f64>, StokesReport)> {
+    let nvu = nv as u32;
+    let elems: Vec<[u32; 9]> = tris
+        .iter()
+        .map(|v| std::array::from_fn(|k| (k as u32 / 3) * nvu + v[k % 3]))
+        .collect();
+    let mut k = Csr::from_elements(3 * nv, &elems)?;
+    assemble_matrix(&mut k, &elems, |e| element(e).k)?;
+    assemble_vector(&mut rhs, &elems, |e| element(e).f)?;
+    apply_dirichlet(&mut k, &mut rhs, fixed, values)?;
+    let x = solve_direct(&k, &rhs, nv, all_dirichlet)?;
+    let kx = k.mul(&x);
+    let r: Vec<f64> = kx.iter().zip(&rhs).map(|(a, b)| a - b).collect();
+    let report = StokesReport {
+        converged: true,
+        residual: norm(&r) / norm(&rhs).max(f64::MIN_POSITIVE),
+        ..Default::default()
+    };
+    Ok((x, report))
 }
 
 /// Sparse LU of the condensed system; with all-Dirichlet boundaries the matrix is bordered by

@@ -126,23 +126,28 @@ pub(crate) fn fast_marching(
             done[i] = true;
         }
     }
-    let update = |b: usize, val: &[f64], done: &[bool]| -> f64 {
-        let mut best = f64::INFINITY;
-        for &c in &v2c[off[b]..off[b + 1]] {
-            let cell = &cells[c as usize * nv..(c as usize + 1) * nv];
-            let mut kn = [([0.0; 3], 0.0); 3];
-            let mut k = 0;
-            for &w in cell {
-                if w as usize != b && done[w as usize] && k < 3 {
-                    kn[k] = (points[w as usize], val[w as usize]);
-                    k += 1;
-                }
-            }
-            if k > 0 {
-                best = best.min(local_update(&points[b], &kn[..k]));
+    // The update of node `b` from the accepted nodes of one cell `c`.
+    let cell_update = |b: usize, c: usize, val: &[f64], done: &[bool]| -> f64 {
+        let cell = &cells[c * nv..(c + 1) * nv];
+        let mut kn = [([0.0; 3], 0.0); 3];
+        let mut k = 0;
+        for &w in cell {
+            if w as usize != b && done[w as usize] && k < 3 {
+                kn[k] = (points[w as usize], val[w as usize]);
+                k += 1;
             }
         }
-        best
+        if k > 0 {
+            local_update(&points[b], &kn[..k])
+        } else {
+            f64::INFINITY
+        }
+    };
+    let update = |b: usize, val: &[f64], done: &[bool]| -> f64 {
+        v2c[off[b]..off[b + 1]]
+            .iter()
+            .map(|&c| cell_update(b, c as usize, val, done))
+            .fold(f64::INFINITY, f64::min)
     };
     // Seed: every non-frozen neighbour of the band.
     let mut seeds: Vec<usize> = Vec::new();
@@ -172,6 +177,7 @@ pub(crate) fn fast_marching(
             continue;
         }
         done[a] = true;
+        // Only the cells around `a` gained an accepted node: update their other nodes from them.
         for &c in &v2c[off[a]..off[a + 1]] {
             let c = c as usize;
             for j in 0..nv {
@@ -179,7 +185,7 @@ pub(crate) fn fast_marching(
                 if done[b] {
                     continue;
                 }
-                let t = update(b, &val, &done);
+                let t = cell_update(b, c, &val, &done);
                 if t < val[b] {
                     val[b] = t;
                     heap.push(Reverse(Key(t, b as u32)));

@@ -7,12 +7,22 @@
 //!   `Ω_{Γ_h}`;
 //! - starting value `x^0 = z - α n_h(z)` as in the paper, and every line search warm-starts from
 //!   the previous `α`;
-//! - when Newton fails (leaves the mesh, a non-positive slope, or no convergence), the root is
-//!   bracketed by sampling `α` on `[-3h, 3h]` in steps of `h/8` (smallest `|α|` first, as (5.1)
-//!   asks) and refined by the Illinois method.
+//! - when Newton fails (leaves the mesh, a non-positive slope, no convergence, or a root farther
+//!   than `2h`), the root is bracketed by sampling `α` on `[-3h, 3h]` in steps of `h/8` (smallest
+//!   `|α|` first, as (5.1) asks) and refined by the Illinois method;
+//! - robust starting value: the first-order guess `φ_h(z) / |G_h φ_h(z)|` is clamped to `[-h, h]`
+//!   (a node of a cut cell of diameter `h` is within `h` of `Γ_h`; where `G_h φ_h` nearly
+//!   vanishes — on the medial axis of `Γ` — the unclamped guess is unbounded);
+//! - a result farther than `2h` from `z` (the iteration converged to another sheet of `Γ_h`, or
+//!   `n_h` is meaningless because `z` lies on the medial axis) is rejected: the node gets the
+//!   first-order value `φ_h(z) / |∇φ_h(z)|` of its cut cell, clamped to `[-h, h]`, and counts as
+//!   not converged.
 
 use super::ppr::Recovery;
 use super::simplices::{axpy, dot, norm, sub, Simplices};
+
+/// Largest accepted `|α|` and `|d_h(z)|`, in units of the home cell's diameter `h`.
+const ROOT_LIMIT: f64 = 2.0;
 
 /// Iteration controls.
 #[derive(Debug, Clone, Copy)]
@@ -169,7 +179,9 @@ impl Ctx<'_> {
         hint: &mut u32,
     ) -> Option<(f64, bool)> {
         if let Some(a) = self.newton(z, n, alpha, h, p, hint) {
-            return Some((a, false));
+            if a.abs() <= ROOT_LIMIT * h {
+                return Some((a, false));
+            }
         }
         self.bracket(z, n, h, p, hint).map(|a| (a, true))
     }
@@ -200,9 +212,13 @@ pub(crate) fn project(
     let mut hint = cell;
     let mut out = Projection::default();
     // A first-order guess, used when everything else fails: φ / |G_h φ_h| at z.
+    let fallback = cell_guess(sx, phi, cell, z, phi_z, h);
     let g0 = rec.at_node_or_cell(sx, cell, z);
-    let guess = phi_z / norm(&g0).max(f64::MIN_POSITIVE);
-    out.d = guess;
+    let mut guess = phi_z / norm(&g0);
+    if !guess.is_finite() || guess.abs() > h {
+        guess = fallback;
+    }
+    out.d = fallback;
     let Some(n0) = ctx.normal(z, &mut hint) else {
         return out;
     };
@@ -237,7 +253,24 @@ pub(crate) fn project(
         out.d = alpha;
         out.converged = false;
     }
+    if !out.d.is_finite() || out.d.abs() > ROOT_LIMIT * h {
+        out.d = fallback;
+        out.converged = false;
+    }
     out
+}
+
+/// The first-order value `φ_h(z) / |∇φ_h(z)|` with the gradient of `φ_h` in the cut cell `cell`,
+/// clamped to `[-h, h]` (also when the gradient vanishes).
+fn cell_guess(sx: &Simplices, phi: &[f64], cell: u32, z: &[f64; 3], phi_z: f64, h: f64) -> f64 {
+    let lam = sx.bary(cell as usize, z);
+    let g = norm(&sx.grad_in(cell as usize, &lam, phi));
+    let d = phi_z / g;
+    if d.is_finite() {
+        d.clamp(-h, h)
+    } else {
+        h.copysign(phi_z)
+    }
 }
 
 impl Recovery<'_> {

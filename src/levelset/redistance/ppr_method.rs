@@ -6,9 +6,10 @@
 //! 1. the cut cells `T_{Γ_h}` are found from the nodal signs (a cell is cut when its nodal values
 //!    take both signs or one is 0);
 //! 2. the PPR recovered gradient `G_h φ_h` ([`super::ppr`]) and `n_h = G_h φ_h / |G_h φ_h|` (6.6);
-//! 3. for every node `v ∈ N(T_{Γ_h})`, `d_h(v)` by (6.10)–(6.11) ([`super::oblique`]);
+//! 3. for every node `v ∈ N(T_{Γ_h})`, `d_h(v)` by (6.10)–(6.11) ([`super::oblique`]); with
+//!    [`PprOptions::layers`] = 2 also for the nodes of the cells around the vertices of cut cells;
 //! 4. nodal interpolation `I_h d_h` (6.7) — the values at those nodes;
-//! 5. (extension) fast marching ([`super::fmm`]) from those nodes to all others, on the P1
+//! 5. (extension) fast marching ([`super::fmm`]) from the projected nodes to all others, on the P1
 //!    sub-mesh of the nodes for P2; the sign of `φ_h` is kept outside the band.
 
 use rayon::prelude::*;
@@ -37,6 +38,11 @@ pub struct PprOptions {
     pub damped: bool,
     /// Run the extension phase (fast marching); otherwise nodes off the band keep `φ_h`.
     pub extend: bool,
+    /// Layers of cells whose nodes get the oblique projection: 1 = the nodes of the cut cells
+    /// `N(T_{Γ_h})` only (003 §6.3, the tables); 2 also projects the nodes of every cell sharing a
+    /// vertex with a cut cell, so that the PPR patches of the next redistancing see projected
+    /// values rather than fast-marching ones (repeated redistancing, 003 Fig. 8.4).
+    pub layers: usize,
 }
 
 impl Default for PprOptions {
@@ -48,6 +54,7 @@ impl Default for PprOptions {
             max_newton: 50,
             damped: true,
             extend: true,
+            layers: 2,
         }
     }
 }
@@ -55,13 +62,17 @@ impl Default for PprOptions {
 /// Statistics of one redistancing.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct PprReport {
+    /// Cells of the mesh.
+    pub cells: usize,
+    /// Nodes of the field (vertices, plus edge nodes for P2).
+    pub nodes: usize,
     /// Cells cut by the zero level, `T_{Γ_h}`.
     pub cut_cells: usize,
     /// Nodes of the cut cells, `N(T_{Γ_h})` (the initialisation band).
     pub band_nodes: usize,
     /// Largest number of oblique iterations (6.11) used by one node.
     pub max_outer_iterations: usize,
-    /// Band nodes where (6.10)–(6.11) did not reach the tolerance (they keep the last iterate, or
+    /// Projected nodes (band, and second layer if any) where (6.10)–(6.11) did not reach the tolerance (they keep the last iterate, or
     /// `φ_h / |G_h φ_h|` when the projection failed outright).
     pub not_converged: usize,
     /// Line searches that needed the bracketing fallback.
@@ -89,10 +100,17 @@ fn validate(phi: &[f64], n_nodes: usize, opts: &PprOptions) -> Result<()> {
             opts.degree
         )));
     }
-    if opts.tol.is_nan() || opts.tol <= 0.0 || opts.max_outer == 0 || opts.max_newton == 0 {
-        return Err(Error::InvalidInput(
-            "PPR redistancing: tol, max_outer and max_newton must be positive".into(),
-        ));
+    if opts.tol.is_nan()
+        || opts.tol <= 0.0
+        || opts.max_outer == 0
+        || opts.max_newton == 0
+        || !(1..=2).contains(&opts.layers)
+    {
+        return Err(Error::InvalidInput(format!(
+            "PPR redistancing: tol, max_outer and max_newton must be positive and layers 1 or 2 \
+             (got tol {}, max_outer {}, max_newton {}, layers {})",
+            opts.tol, opts.max_outer, opts.max_newton, opts.layers
+        )));
     }
     super::geometric::check_field(phi, n_nodes, "phi")
 }
@@ -175,6 +193,32 @@ fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions, rec: Recovery) -> Result<
             }
         }
     }
+    let mut band = vec![false; nn];
+    for n in 0..nn {
+        band[n] = home[n] != u32::MAX;
+    }
+    if opts.layers == 2 {
+        // Second layer: nodes of cells sharing a vertex with a cut cell; such a node is within
+        // two cell diameters of Γ_h.
+        let mut seen = vec![false; sx.n_cells()];
+        for &c in &cut {
+            for &v in &sx.nodes(c as usize)[..sx.nv] {
+                for &c2 in sx.cells_of(v) {
+                    if std::mem::replace(&mut seen[c2 as usize], true) {
+                        continue;
+                    }
+                    let d = 2.0 * sx.diameter(c2 as usize);
+                    for &n in sx.nodes(c2 as usize) {
+                        let i = n as usize;
+                        if !band[i] && d < h[i] {
+                            h[i] = d;
+                            home[i] = c2;
+                        }
+                    }
+                }
+            }
+        }
+    }
     let band_nodes: Vec<u32> = (0..nn as u32)
         .filter(|&n| home[n as usize] != u32::MAX)
         .collect();
@@ -201,15 +245,17 @@ fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions, rec: Recovery) -> Result<
         })
         .collect();
     let mut report = PprReport {
+        cells: sx.n_cells(),
+        nodes: nn,
         cut_cells: cut.len(),
-        band_nodes: band_nodes.len(),
+        band_nodes: band.iter().filter(|&&b| b).count(),
         ..PprReport::default()
     };
     let mut values = phi.to_vec();
-    let mut band = vec![false; nn];
+    let mut projected = vec![false; nn];
     for (&n, p) in band_nodes.iter().zip(&proj) {
         values[n as usize] = p.d;
-        band[n as usize] = true;
+        projected[n as usize] = true;
         report.max_outer_iterations = report.max_outer_iterations.max(p.outer_iterations);
         report.not_converged += usize::from(!p.converged);
         report.bracketed += usize::from(p.bracketed);
@@ -220,10 +266,12 @@ fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions, rec: Recovery) -> Result<
         .map(|&c| (mean_grad_norm(sx, c as usize, &values) - 1.0).abs())
         .fold(0.0, f64::max);
     if opts.extend {
-        let known: Vec<Option<f64>> = (0..nn).map(|n| band[n].then(|| values[n].abs())).collect();
+        let known: Vec<Option<f64>> = (0..nn)
+            .map(|n| projected[n].then(|| values[n].abs()))
+            .collect();
         let dist = fast_marching(&sx.node_points, &sx.node_cells(), sx.nv, &known);
         for n in 0..nn {
-            if !band[n] && dist[n].is_finite() {
+            if !projected[n] && dist[n].is_finite() {
                 values[n] = dist[n].copysign(phi[n]);
             }
         }
