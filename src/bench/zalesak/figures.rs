@@ -138,7 +138,7 @@ fn initial_final(dir: &Path, r: &ZalesakReport) -> Result<()> {
     let plot = MeshPlot {
         width: 1100,
         height: 1000,
-        view: Some((DVec2::new(-1.95, -0.1), DVec2::new(1.95, 1.6))),
+        view: Some((DVec2::new(-2.0, -1.55), DVec2::new(2.0, 2.0))),
         polylines: lines,
         insets: corners
             .iter()
