@@ -7,9 +7,12 @@
 //! `[[A, Bᵀ], [B, -C]] (u, p) = (F, G)` with global dofs `ux = v`, `uy = n_v + v`,
 //! `p = 2 n_v + v`. Two solvers:
 //! - [`StokesSolver::Uzawa`]: CG on the pressure Schur complement `S = B A⁻¹ Bᵀ + C` (Uzawa's
-//!   method accelerated by CG, 004 §5.1), with `A` factorised once by sparse Cholesky and `S`
-//!   preconditioned by the viscosity-weighted pressure mass matrix `∫ μ⁻¹ q r` (also Cholesky),
-//!   which makes the iteration count independent of `h` and of the viscosity ratio.
+//!   method accelerated by CG, 004 §5.1), with the Dirichlet velocity dofs eliminated, `A`
+//!   factorised once by sparse Cholesky (AMD ordering of the vertex graph) and `S`
+//!   preconditioned by the pressure mass matrix weighted by `1/μ̄_T` (`μ̄_T` the mean viscosity
+//!   of the element; also Cholesky): measured 19–21 iterations at rtol 1e-8 on criss-cross
+//!   meshes of 545–8,321 vertices for viscosity ratios 1–1e-6 (`tests/stokes_couette.rs`).
+//!   The block assembly and the iteration are in `src/flows/stokes_uzawa.rs`.
 //! - [`StokesSolver::Direct`]: sparse LU of the whole saddle-point matrix, the reference.
 //!
 //! When every boundary edge is Dirichlet the pressure is defined up to a constant: the Uzawa
