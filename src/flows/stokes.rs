@@ -338,9 +338,11 @@ impl<'a> StokesProblem<'a> {
             self.add_surface_tension(&mut rhs)?;
         }
         let (fixed, values, all_dirichlet) = self.dirichlet_data()?;
-        let (x, mut report) = match solver {
+        let (x, recovery, mut report) = match solver {
             StokesSolver::Direct => {
-                solve_full_direct(nv, &tris, &element, rhs, &fixed, &values, all_dirichlet)?
+                let (x, rep) =
+                    solve_full_direct(nv, &tris, &element, rhs, &fixed, &values, all_dirichlet)?;
+                (x, None, rep)
             }
             StokesSolver::Uzawa { rtol, max_iter } => {
                 let rule = tri_rule(5);
@@ -366,8 +368,10 @@ impl<'a> StokesProblem<'a> {
                         // grow with the viscosity ratio).
                         mu_mean: rule.mean(|l| self.viscosity.at(mesh, t, l)),
                         area: mesh.tri_area(t),
+                        bubble: el.bubble_recovery(),
                     }
-                })?
+                })
+                .map(|(x, b, rep)| (x, Some(b), rep))?
             }
         };
         let mut x = x;
@@ -383,7 +387,10 @@ impl<'a> StokesProblem<'a> {
             .enumerate()
             .map(|(e, v)| {
                 let xe: [f64; 9] = std::array::from_fn(|k| x[(k / 3) * nv + v[k % 3] as usize]);
-                element(e).bubble(&xe)
+                match &recovery {
+                    Some(r) => r[e].bubble(&xe),
+                    None => element(e).bubble(&xe),
+                }
             })
             .collect();
         let mut bubbles = vec![DVec2::ZERO; mesh.n_tris()];
