@@ -4,10 +4,13 @@
 //! the timing of a 100,000-vertex fitted two-phase solve split into meshing, assembly,
 //! factorisation and Uzawa. Prints markdown tables.
 //!
-//! Usage: `cargo run --release --example couette_convergence`
+//! Usage: `cargo run --release --example couette_convergence [-- out=DIR]` (`out` writes
+//! `couette_convergence.png`, the figure of the README: `out=figures`).
 
 use anisomesh::bench::couette::run;
-use anisomesh::bench::couette_sweep::{fitted_options, interface_shift, sweep, sweep_table};
+use anisomesh::bench::couette_sweep::{
+    fitted_options, interface_shift, sweep, sweep_png, sweep_table,
+};
 
 fn main() -> anisomesh::Result<()> {
     let quick = std::env::var("ANISOMESH_QUICK").is_ok_and(|v| v == "1");
@@ -20,8 +23,15 @@ fn main() -> anisomesh::Result<()> {
             (-4..=4).map(|k| k as f64 * 1e-4).collect(),
         )
     };
+    let out = std::env::args()
+        .skip(1)
+        .find_map(|a| a.strip_prefix("out=").map(std::path::PathBuf::from));
     let rows = sweep(&scales, &hs)?;
     println!("{}", sweep_table(&rows));
+    if let Some(dir) = &out {
+        std::fs::create_dir_all(dir).map_err(|e| anisomesh::Error::io(dir, e))?;
+        sweep_png(&dir.join("couette_convergence.png"), &rows)?;
+    }
     println!("Default adapted mesh, disk radius 0.1 + shift (mesh unchanged), omega + 1:\n");
     println!("| shift | harmonic | quadrature |\n|---|---|---|");
     let sh = interface_shift(&shifts)?;

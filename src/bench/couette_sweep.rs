@@ -10,9 +10,10 @@
 //! like `s`, so the vertex count roughly like `1/s²`. Fitted family: edge length `h` on the circle,
 //! `hmax = 8 h` (at most 0.1).
 
-use super::couette::{build_mesh, run, CouetteOptions, CouetteReport};
+use super::couette::{build_mesh, run, CouetteOptions, CouetteReport, PAPER};
 use crate::error::Result;
 use crate::flows::{CouetteCase, InterfaceViscosity, StokesSolver};
+use crate::plot::{loglog_png, LogLogPlot, Series, SeriesStyle};
 use serde::Serialize;
 
 /// One line of [`sweep`].
@@ -122,4 +123,47 @@ pub fn interface_shift(shifts: &[f64]) -> Result<Vec<(f64, f64, f64)>> {
         out.push((d, w[0], w[1]));
     }
     Ok(out)
+}
+
+/// Writes `|ω + 1|` against the vertex count of each family of `rows` as a log-log PNG (with
+/// the paper's FreeFem++ adapted-mesh results, 004 §5.1, as a fourth series).
+pub fn sweep_png(path: &std::path::Path, rows: &[SweepRow]) -> Result<()> {
+    let mut families: Vec<&str> = Vec::new();
+    for r in rows {
+        if !families.contains(&r.family.as_str()) {
+            families.push(&r.family);
+        }
+    }
+    let mut series: Vec<Series> = families
+        .iter()
+        .map(|f| Series {
+            name: (*f).to_string(),
+            points: rows
+                .iter()
+                .filter(|r| r.family == *f && r.report.omega_error > 0.0)
+                .map(|r| (r.report.vertices as f64, r.report.omega_error))
+                .collect(),
+            show_fit_slope: true,
+            style: SeriesStyle::LineMarkers,
+        })
+        .collect();
+    series.push(Series {
+        name: "FreeFem++ adapted (004)".into(),
+        points: PAPER
+            .iter()
+            .map(|&(n, w)| (n as f64, (w + 1.0).abs()))
+            .collect(),
+        show_fit_slope: false,
+        style: SeriesStyle::Markers,
+    });
+    loglog_png(
+        path,
+        &LogLogPlot {
+            title: "Couette disk (004 §5.1): |omega + 1| against vertices".into(),
+            x_label: "vertices".into(),
+            y_label: "|omega + 1|".into(),
+            series,
+            ..LogLogPlot::default()
+        },
+    )
 }

@@ -146,6 +146,31 @@ impl MiniElement {
     /// The bubble coefficients `(b_x, b_y)` from the element's condensed dof values
     /// `[ux0..2, uy0..2, p0..2]`: `u_b = A_bb⁻¹ (f_b - M_b x)`.
     pub fn bubble(&self, x: &[f64; 9]) -> [f64; 2] {
+        self.bubble_recovery().bubble(x)
+    }
+
+    /// The part of the element needed to recover the bubble after the solve (24 numbers
+    /// instead of the 114 of the element, to keep for every element of a large mesh).
+    pub fn bubble_recovery(&self) -> BubbleRecovery {
+        BubbleRecovery {
+            abb_inv: self.abb_inv,
+            m_b: self.m_b,
+            f_b: self.f_b,
+        }
+    }
+}
+
+/// The bubble-recovery data of a [`MiniElement`] ([`MiniElement::bubble_recovery`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BubbleRecovery {
+    abb_inv: [[f64; 2]; 2],
+    m_b: [[f64; 9]; 2],
+    f_b: [f64; 2],
+}
+
+impl BubbleRecovery {
+    /// As [`MiniElement::bubble`].
+    pub fn bubble(&self, x: &[f64; 9]) -> [f64; 2] {
         let r: [f64; 2] = std::array::from_fn(|b| {
             self.f_b[b] - (0..9).map(|j| self.m_b[b][j] * x[j]).sum::<f64>()
         });

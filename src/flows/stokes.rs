@@ -7,9 +7,12 @@
 //! `[[A, Bᵀ], [B, -C]] (u, p) = (F, G)` with global dofs `ux = v`, `uy = n_v + v`,
 //! `p = 2 n_v + v`. Two solvers:
 //! - [`StokesSolver::Uzawa`]: CG on the pressure Schur complement `S = B A⁻¹ Bᵀ + C` (Uzawa's
-//!   method accelerated by CG, 004 §5.1), with `A` factorised once by sparse Cholesky and `S`
-//!   preconditioned by the viscosity-weighted pressure mass matrix `∫ μ⁻¹ q r` (also Cholesky),
-//!   which makes the iteration count independent of `h` and of the viscosity ratio.
+//!   method accelerated by CG, 004 §5.1), with the Dirichlet velocity dofs eliminated, `A`
+//!   factorised once by sparse Cholesky (AMD ordering of the vertex graph) and `S`
+//!   preconditioned by the pressure mass matrix weighted by `1/μ̄_T` (`μ̄_T` the mean viscosity
+//!   of the element; also Cholesky): measured 19–21 iterations at rtol 1e-8 on criss-cross
+//!   meshes of 545–8,321 vertices for viscosity ratios 1–1e-6 (`tests/stokes_couette.rs`).
+//!   The block assembly and the iteration are in `src/flows/stokes_uzawa.rs`.
 //! - [`StokesSolver::Direct`]: sparse LU of the whole saddle-point matrix, the reference.
 //!
 //! When every boundary edge is Dirichlet the pressure is defined up to a constant: the Uzawa
@@ -335,9 +338,11 @@ impl<'a> StokesProblem<'a> {
             self.add_surface_tension(&mut rhs)?;
         }
         let (fixed, values, all_dirichlet) = self.dirichlet_data()?;
-        let (x, mut report) = match solver {
+        let (x, recovery, mut report) = match solver {
             StokesSolver::Direct => {
-                solve_full_direct(nv, &tris, &element, rhs, &fixed, &values, all_dirichlet)?
+                let (x, rep) =
+                    solve_full_direct(nv, &tris, &element, rhs, &fixed, &values, all_dirichlet)?;
+                (x, None, rep)
             }
             StokesSolver::Uzawa { rtol, max_iter } => {
                 let rule = tri_rule(5);
@@ -363,8 +368,10 @@ impl<'a> StokesProblem<'a> {
                         // grow with the viscosity ratio).
                         mu_mean: rule.mean(|l| self.viscosity.at(mesh, t, l)),
                         area: mesh.tri_area(t),
+                        bubble: el.bubble_recovery(),
                     }
-                })?
+                })
+                .map(|(x, b, rep)| (x, Some(b), rep))?
             }
         };
         let mut x = x;
@@ -380,7 +387,10 @@ impl<'a> StokesProblem<'a> {
             .enumerate()
             .map(|(e, v)| {
                 let xe: [f64; 9] = std::array::from_fn(|k| x[(k / 3) * nv + v[k % 3] as usize]);
-                element(e).bubble(&xe)
+                match &recovery {
+                    Some(r) => r[e].bubble(&xe),
+                    None => element(e).bubble(&xe),
+                }
             })
             .collect();
         let mut bubbles = vec![DVec2::ZERO; mesh.n_tris()];

@@ -21,6 +21,7 @@
 use super::stokes::StokesReport;
 use crate::error::{Error, Result};
 use crate::fem::csr::{dot, Csr};
+use crate::fem::p1_bubble::BubbleRecovery;
 use crate::fem::solve::{amd_order, expand_ordering, pcg, CgOptions, Cholesky};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -35,6 +36,8 @@ pub(super) struct ElementData {
     pub f: [f64; 9],
     pub mu_mean: f64,
     pub area: f64,
+    /// What recovers the element's bubble after the solve.
+    pub bubble: BubbleRecovery,
 }
 
 /// A rectangular CSR matrix (the divergence block and its transpose).
@@ -112,12 +115,12 @@ pub(super) struct UzawaInput<'a> {
 }
 
 /// Assembles the blocks and solves by Schur-complement CG. Returns the solution in the full
-/// layout (Dirichlet values included) and the report (iterations, residual of the full system,
-/// timings).
+/// layout (Dirichlet values included), the bubble-recovery data of every element, and the
+/// report (iterations, residual of the full system, timings).
 pub(super) fn solve(
     inp: &UzawaInput,
     element: impl Fn(usize) -> ElementData + Sync,
-) -> Result<(Vec<f64>, StokesReport)> {
+) -> Result<(Vec<f64>, Vec<BubbleRecovery>, StokesReport)> {
     let t0 = Instant::now();
     let nv = inp.nv;
     let pattern = Csr::from_elements(nv, inp.tris)?;
@@ -140,9 +143,11 @@ pub(super) fn solve(
     }
     let mut vals = vec![[0.0f64; 8]; pattern.nnz()];
     let mut rhs = inp.rhs_extra.to_vec();
+    let mut bubbles = Vec::with_capacity(inp.tris.len());
     for start in (0..inp.tris.len()).step_by(CHUNK) {
         let end = (start + CHUNK).min(inp.tris.len());
         let els: Vec<ElementData> = (start..end).into_par_iter().map(&element).collect();
+        bubbles.extend(els.iter().map(|el| el.bubble));
         for (e, el) in (start..end).zip(&els) {
             let k = &el.k;
             let (d, o) = (el.area / (6.0 * el.mu_mean), el.area / (12.0 * el.mu_mean));
@@ -350,5 +355,5 @@ pub(super) fn solve(
         factor_nnz: chol.factor_nnz(),
         ..Default::default()
     };
-    Ok((x, report))
+    Ok((x, bubbles, report))
 }
