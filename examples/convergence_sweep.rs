@@ -1,7 +1,6 @@
 //! Error versus vertex count on Zalesak's slotted disk (issue 3 item 7): anisotropic meshes
 //! adapted to the geometric metric of 004 eq. (6) for decreasing `ε` (with `h_min = 0.1 √ε`,
-//! `h_max = 0.2`, the default `anisomesh adapt` band and gradation, kinks of the distance at the
-//! slot corners resolved at the scale `h_min`), the isotropic version of the same metric at the
+//! `h_max = 0.2`, the default `anisomesh adapt` band and gradation), the isotropic version of the same metric at the
 //! same `ε`, and uniform union-jack grids up to 800 x 800 cells (641,601 vertices). For every
 //! mesh, the zero level of the nodal interpolant of the exact signed distance is compared with
 //! the exact shape: two-sided Hausdorff distance (and where it is attained: near the four slot
@@ -11,12 +10,12 @@
 //! pays"), and writes `convergence_<shape>.{csv,png}`.
 //!
 //! Usage: `cargo run --release --example convergence_sweep -- [shape] [points] [--out DIR]
-//! [--no-peers] [--no-kink] [--band K] [--grade G]` (`shape` = zalesak | circle | flower, default
+//! [--no-peers] [--kink K] [--band K] [--grade G]` (`shape` = zalesak | circle | flower, default
 //! zalesak; `points` per family, default 5; `DIR` default `target/convergence`; `--out figures`
 //! regenerates the committed figures; `--band K` applies eq. (6) within `K h_min` of the
 //! interface instead of `5 ε`, `--grade G` grows sizes at rate `G` outside it instead of 1;
-//! `--no-kink` uses the pointwise Hessian at the corners). With `ANISOMESH_QUICK=1`: a tiny sweep (3 points per family, seconds) written to a
-//! temporary directory.
+//! `--kink K` sees the kinks of the distance at the scale `K h_min`). With `ANISOMESH_QUICK=1`: a
+//! tiny sweep (3 points per family, seconds) written to a temporary directory.
 
 use anisomesh::bench::convergence::{run, ConvergenceOptions};
 use std::path::PathBuf;
@@ -35,7 +34,7 @@ fn main() -> anisomesh::Result<()> {
         match a.as_str() {
             "--out" => out = it.next().map(PathBuf::from),
             "--no-peers" => peers = false,
-            "--no-kink" => kink_scale = None,
+            "--kink" => kink_scale = num(it.next()),
             "--band" => band_hmin = num(it.next()),
             "--grade" => grade = num(it.next()),
             _ => positional.push(a.clone()),

@@ -235,11 +235,12 @@ fn spectral_norm(h: &Sym2) -> f64 {
 }
 
 /// `(u, ∇u, H)` at `p` for the eq. (6) metric (004 §4.2) with kinks resolved at scale `delta`:
-/// `H` is the shape's exact Hessian or, when its spectral norm is larger, the Hessian seen at
-/// scale `delta`, the symmetrised central differences of the exact gradient
+/// `H` is the shape's exact Hessian or, when its spectral norm is more than twice as large, the
+/// Hessian seen at scale `delta`, the symmetrised central differences of the exact gradient
 /// `H_δ e_i = (∇u(p + δ e_i) - ∇u(p - δ e_i)) / 2δ`.
 ///
-/// Where `u` is smooth on the scale `δ`, `H_δ = D²u + O(δ²)` and the exact Hessian is kept. On
+/// Where `u` is smooth on the scale `δ`, `H_δ = D²u + O(δ²)` and the exact Hessian is kept
+/// exactly (the factor 2 keeps round-off from switching). On
 /// the medial axis through a corner of the shape the gradient jumps by `[∇u]` (up to `√2` at a
 /// right-angle slot corner) and the pointwise Hessian is zero on both sides — the hypothesis of
 /// 004 Theorem 1 (Lipschitz derivatives) fails there and eq. (6) would let the elements stretch
@@ -253,7 +254,7 @@ pub fn derivatives_at_scale(shape: &dyn Shape, p: DVec2, delta: f64) -> (f64, DV
     let gx = (shape.gradient(p + dx) - shape.gradient(p - dx)) / (2.0 * delta);
     let gy = (shape.gradient(p + dy) - shape.gradient(p - dy)) / (2.0 * delta);
     let hd = Sym2::new(gx.x, 0.5 * (gx.y + gy.x), gy.y);
-    if spectral_norm(&hd) > spectral_norm(&h) {
+    if spectral_norm(&hd) > 2.0 * spectral_norm(&h) {
         (u, g, hd)
     } else {
         (u, g, h)

@@ -25,7 +25,9 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::fem::lagrange::{self, P2Dofs};
 use crate::geom::{DVec2, DVec3};
-use crate::levelset::redistance::{redistance_ppr, redistance_ppr_3d, PprOptions, PprReport};
+use crate::levelset::redistance::{
+    redistance_geometric_3d, redistance_ppr, redistance_ppr_3d, PprOptions, PprReport,
+};
 use crate::mesh::{GridPattern, Mesh2};
 use crate::mesh3::Mesh3;
 
@@ -116,6 +118,8 @@ pub struct Drift {
 pub struct ReinitReport {
     pub tables: Vec<Table>,
     pub volume_drift: Vec<Drift>,
+    /// The same drift test with geometric redistancing (k = 1 only), for reference.
+    pub volume_drift_geometric: Vec<Drift>,
 }
 
 /// Errors of one case: `(h, e_∞, e^∇_∞, report)`.
@@ -184,8 +188,12 @@ fn table_opts(k: usize) -> PprOptions {
 
 /// Example 1 of 003 §8 at level `ℓ`, degree `k`, parameter `α` (initialisation phase only).
 pub fn torus_case(level: u32, k: usize, alpha: f64) -> Result<CaseResult> {
-    let m = refined_box(level, torus_distance)?;
-    let x = nodes3(&m, k);
+    torus_case_on(&refined_box(level, torus_distance)?, level, k, alpha)
+}
+
+/// [`torus_case`] on the given level-`ℓ` mesh (from [`refined_box`] with [`torus_distance`]).
+pub fn torus_case_on(m: &Mesh3, level: u32, k: usize, alpha: f64) -> Result<CaseResult> {
+    let x = nodes3(m, k);
     let phi: Vec<f64> = x
         .iter()
         .map(|p| torus_distance(*p) * q_alpha(alpha, p.x, p.y, p.length()))
@@ -395,19 +403,44 @@ pub fn sphere_drift_signed(
     reps: usize,
     bar: Option<&ProgressBar>,
 ) -> Result<Vec<f64>> {
+    let opts = PprOptions {
+        degree: k,
+        ..PprOptions::default()
+    };
+    drift_with(level, k, reps, bar, |m, f| {
+        Ok(redistance_ppr_3d(&m.points, &m.tets, f, &opts)?.values)
+    })
+}
+
+/// The reference for [`sphere_drift_signed`] with `k = 1`: the same loop with geometric
+/// redistancing (exact distance to the piecewise-planar zero level, 004 §2.2) instead of PPR. It
+/// shows how much of the drift any redistancing to `Γ_h` of a P1 field has.
+pub fn sphere_drift_geometric_signed(
+    level: u32,
+    reps: usize,
+    bar: Option<&ProgressBar>,
+) -> Result<Vec<f64>> {
+    drift_with(level, 1, reps, bar, |m, f| {
+        redistance_geometric_3d(&m.points, &m.tets, f)
+    })
+}
+
+fn drift_with(
+    level: u32,
+    k: usize,
+    reps: usize,
+    bar: Option<&ProgressBar>,
+    redistance: impl Fn(&Mesh3, &[f64]) -> Result<Vec<f64>>,
+) -> Result<Vec<f64>> {
     let r = 0.25;
     let d = move |p: DVec3| p.length() - r;
     let m = refined_box(level, d)?;
     let x = nodes3(&m, k);
     let exact = 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
     let mut f: Vec<f64> = x.iter().map(|&p| d(p)).collect();
-    let opts = PprOptions {
-        degree: k,
-        ..PprOptions::default()
-    };
     let mut errs = vec![(negative_volume(&m, &f, k) - exact) / exact];
     for _ in 0..reps {
-        f = redistance_ppr_3d(&m.points, &m.tets, &f, &opts)?.values;
+        f = redistance(&m, &f)?;
         errs.push((negative_volume(&m, &f, k) - exact) / exact);
         if let Some(b) = bar {
             b.inc(1);
@@ -604,6 +637,8 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
     };
     let total: usize = cases.iter().map(|c| n_levels(c.1)).sum();
     let bar = progress(total as u64, "tables");
+    // Torus meshes by level, built once (the deepest levels take seconds and hundreds of MiB).
+    let mut meshes: std::collections::HashMap<u32, Mesh3> = std::collections::HashMap::new();
     for (name, dim, alpha, k) in cases {
         let levels = if dim == 2 {
             &opts.levels_2d
@@ -617,7 +652,15 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
             let (h, e_inf, e_grad, report) = match name {
                 "circle" => circle_case(l, k, a)?,
                 "zalesak" => zalesak_case(l, k, a)?,
-                _ => torus_case(l, k, a)?,
+                _ => {
+                    let m = match meshes.entry(l) {
+                        std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
+                        std::collections::hash_map::Entry::Vacant(e) => {
+                            e.insert(refined_box(l, torus_distance)?)
+                        }
+                    };
+                    torus_case_on(m, l, k, a)?
+                }
             };
             rows.push(Row {
                 level: l,
@@ -646,6 +689,7 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
     }
     bar.finish_and_clear();
     let mut volume_drift = Vec::new();
+    let mut volume_drift_geometric = Vec::new();
     for &l in &opts.volume_levels {
         for &k in &opts.degrees {
             let bar = progress(opts.volume_reps as u64, &format!("sphere k={k} l={l}"));
@@ -660,10 +704,27 @@ pub fn run(opts: &ReinitOptions) -> Result<ReinitReport> {
                 rel_error: e,
             });
         }
+        if opts.degrees.contains(&1) {
+            let bar = progress(opts.volume_reps as u64, &format!("sphere geometric l={l}"));
+            let e: Vec<f64> = sphere_drift_geometric_signed(l, opts.volume_reps, Some(&bar))?
+                .into_iter()
+                .map(f64::abs)
+                .collect();
+            bar.finish_and_clear();
+            if opts.print {
+                println!("geometric redistancing, {}", drift_line(1, l, &e));
+            }
+            volume_drift_geometric.push(Drift {
+                k: 1,
+                level: l,
+                rel_error: e,
+            });
+        }
     }
     let report = ReinitReport {
         tables,
         volume_drift,
+        volume_drift_geometric,
     };
     if let Some(dir) = &opts.out_dir {
         write_json(dir, &report)?;
@@ -708,28 +769,36 @@ fn write_plots(dir: &std::path::Path, report: &ReinitReport) -> Result<()> {
             loglog_png(&dir.join(format!("reinit_{name}_{what}.png")), &plot)?;
         }
     }
-    if !report.volume_drift.is_empty() {
+    let mut ks: Vec<usize> = report.volume_drift.iter().map(|d| d.k).collect();
+    ks.sort_unstable();
+    ks.dedup();
+    for k in ks {
+        let geo = report.volume_drift_geometric.iter().filter(|_| k == 1);
+        let series = report
+            .volume_drift
+            .iter()
+            .filter(|d| d.k == k)
+            .map(|d| (format!("PPR, level {}", d.level), d))
+            .chain(geo.map(|d| (format!("geometric, level {}", d.level), d)))
+            .map(|(name, d)| Series {
+                name,
+                points: d
+                    .rel_error
+                    .iter()
+                    .enumerate()
+                    .map(|(n, &e)| (n as f64, e))
+                    .collect(),
+                ..Series::default()
+            })
+            .collect();
         let plot = LinesPlot {
-            title: "sphere r = 0.25: relative volume error (003 Fig. 8.4)".into(),
-            x_label: "redistancings".into(),
-            y_label: "e_Vol".into(),
-            series: report
-                .volume_drift
-                .iter()
-                .map(|d| Series {
-                    name: format!("k={} level {}", d.k, d.level),
-                    points: d
-                        .rel_error
-                        .iter()
-                        .enumerate()
-                        .map(|(n, &e)| (n as f64, e))
-                        .collect(),
-                    ..Series::default()
-                })
-                .collect(),
+            title: format!("sphere r = 0.25, k = {k}: relative volume error (003 Fig. 8.4)"),
+            x_label: "redistancings n".into(),
+            y_label: "e_Vol^n".into(),
+            series,
             ..LinesPlot::default()
         };
-        lines_png(&dir.join("reinit_volume.png"), &plot)?;
+        lines_png(&dir.join(format!("reinit_volume_k{k}.png")), &plot)?;
     }
     Ok(())
 }

@@ -123,6 +123,18 @@ pub struct ReinitArgs {
     /// Smaller levels (a run of seconds instead of minutes).
     #[arg(long)]
     quick: bool,
+    /// Deepest torus level (003 Tables 8.1-8.3 use 3..=8; 7 needs ~2 GiB and minutes).
+    #[arg(long, default_value_t = 5)]
+    max_level_3d: u32,
+    /// Values of alpha (1, 10 and the stress case 50).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1u32, 10, 50])]
+    alphas: Vec<u32>,
+    /// Levels of the sphere volume-drift test (003 Fig. 8.4 uses 5 and 6); empty to skip.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![4u32])]
+    drift_levels: Vec<u32>,
+    /// Repeated redistancings of the drift test (003: 100).
+    #[arg(long, default_value_t = 100)]
+    reps: usize,
     /// Output directory (reinit.json and plots).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -132,6 +144,10 @@ pub struct ReinitArgs {
 pub fn reinit(a: ReinitArgs) -> Result<()> {
     let mut opts = reinit::ReinitOptions {
         out_dir: Some(a.output.clone()),
+        levels_3d: (3..=a.max_level_3d).collect(),
+        alphas: a.alphas,
+        volume_levels: a.drift_levels,
+        volume_reps: a.reps,
         ..reinit::ReinitOptions::default()
     };
     if a.quick {
