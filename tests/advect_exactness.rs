@@ -36,7 +36,12 @@ fn translation_reproduces_constant_and_linear_fields() {
     let v = move |_t: f64, _x: DVec2| d; // unit time: the foot of x is x - d, exactly.
     for interp in [Interpolation::P1, Interpolation::QUADRATIC] {
         for form in [Form::Nodal, Form::L2Projection { subdivisions: 0 }] {
-            for scheme in [FootScheme::Euler, FootScheme::Midpoint, FootScheme::Rk4] {
+            for (scheme, limit) in [
+                (FootScheme::Euler, false),
+                (FootScheme::Midpoint, false),
+                (FootScheme::Rk4, false),
+                (FootScheme::Rk4, true),
+            ] {
                 let opts = AdvectOptions {
                     foot: FootOptions {
                         scheme,
@@ -46,6 +51,7 @@ fn translation_reproduces_constant_and_linear_fields() {
                     form,
                     inflow: Inflow::Function(Arc::new(move |p: DVec2| lin(p))),
                     cg_tol: 1e-14,
+                    limit,
                 };
                 let c = vec![2.5; mesh.n_points()];
                 let opts_c = AdvectOptions {

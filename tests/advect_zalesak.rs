@@ -34,10 +34,11 @@ fn reduced_zalesak_revolution_keeps_area_and_perimeter() {
     let r = run(&opts).unwrap();
     print!("{}", r.summary());
     let (ea, ep) = r.relative_errors();
-    // Measured: area -5.1e-4, perimeter -3.2e-3, 2,838 vertices mean, 3,120 max (with 20
-    // adapt cycles instead of the default 4: -4.4e-5, -4.0e-3).
+    // Measured (limited L2 projection, 4 adapt cycles): area -6.3e-4, perimeter -5.8e-3 (the
+    // corners rounded at eps 3e-3), 2,821 vertices mean, 3,123 max. Unlimited: -5.1e-4,
+    // -3.2e-3 with a spurious loop at a slot corner.
     assert!(ea.abs() < 1e-3, "area error {ea}");
-    assert!(ep.abs() < 6e-3, "perimeter error {ep}");
+    assert!(ep.abs() < 8e-3, "perimeter error {ep}");
     assert!(r.vertices_max < 4000, "{} vertices", r.vertices_max);
     assert!(r
         .fixed_point_iterations

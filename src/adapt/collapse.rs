@@ -84,7 +84,7 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     let mut q_new: f64 = 1.0;
     for &t in &ctx.fan {
         let tri = mesh.tris[t as usize];
-        q_old = q_old.max(ctx.q(tri));
+        q_old = q_old.max(ctx.q_tri(t));
         if tri.contains(&b) {
             continue;
         }
@@ -168,12 +168,12 @@ pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
         if let Some(j) = j_ac {
             ctx.mesh.neighbours[n_ac as usize][j] = n_bc;
             ctx.mesh.edge_ref[n_ac as usize][j] = r;
-            ctx.tstamp[n_ac as usize] = ctx.gen;
+            ctx.touch(n_ac);
         }
         if let Some(j) = j_bc {
             ctx.mesh.neighbours[n_bc as usize][j] = n_ac;
             ctx.mesh.edge_ref[n_bc as usize][j] = r;
-            ctx.tstamp[n_bc as usize] = ctx.gen;
+            ctx.touch(n_bc);
         }
         // Seeds for c and b: a surviving neighbour that holds them.
         let keep = if n_bc != NONE { n_bc } else { n_ac };
@@ -184,7 +184,7 @@ pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
         }
         ctx.mesh.tris[tu] = [NONE; 3];
         ctx.mesh.neighbours[tu] = [NONE; 3];
-        ctx.tstamp[tu] = ctx.gen;
+        ctx.touch(t);
     }
     for &t in &fan {
         let tu = t as usize;
@@ -193,7 +193,7 @@ pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
         }
         let ia = local(ctx.mesh.tris[tu], a);
         ctx.mesh.tris[tu][ia] = b;
-        ctx.tstamp[tu] = ctx.gen;
+        ctx.touch(t);
         survivor = t;
     }
     ctx.mesh.vert_tri[a as usize] = NONE;
@@ -227,11 +227,11 @@ pub fn pass(ctx: &mut Ctx) -> usize {
         if ctx.mesh.corner[au] || ctx.mesh.required[au] {
             continue;
         }
-        ctx.load_fan(a);
         // Only vertices whose ball changed since the last collapse pass.
-        if ctx.fan.iter().all(|&t| ctx.tstamp[t as usize] < since) {
+        if ctx.vmod[au] < since {
             continue;
         }
+        ctx.load_fan(a);
         short.clear();
         for k in 0..ctx.fan.len() {
             let tri = ctx.mesh.tris[ctx.fan[k] as usize];

@@ -245,10 +245,17 @@ pub fn adapt(
             }
             Ok(n)
         };
+        // Spatial renumbering keeps fan walks cache-friendly as the mesh grows: at the start of
+        // every cycle and whenever splits have doubled the vertex count since the last one.
+        let mut renumbered_at = 0;
         for _cycle in 0..opts.max_cycles {
             rep.cycles += 1;
             let mut ns = 0;
             for _ in 0..64 {
+                if ctx.mesh.n_points() >= 2 * renumbered_at.max(1) || ns == 0 {
+                    ctx.renumber_spatially();
+                    renumbered_at = ctx.mesh.n_points();
+                }
                 let n = run(&mut ctx, PassKind::Split, &mut rep)?;
                 ns += n;
                 if n == 0 {

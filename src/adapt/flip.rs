@@ -35,7 +35,11 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
     if orient2d(pc, pa, pd) <= 0.0 || orient2d(pc, pd, pb) <= 0.0 {
         return None;
     }
-    let q_old = ctx.q([c, a, b]).max(ctx.q([d, b, a]));
+    let q_old = ctx.q_tri(t).max(ctx.q_tri(t2));
+    // Q_ani >= 1: no flip can bring the worse quality below GAIN * q_old when q_old <= 1/GAIN.
+    if q_old * GAIN <= 1.0 {
+        return None;
+    }
     let q_new = ctx.q([c, a, d]).max(ctx.q([d, b, c]));
     (q_new < GAIN * q_old).then_some(FlipPlan { t, i: i as u8 })
 }
@@ -78,31 +82,22 @@ pub fn apply(ctx: &mut Ctx, plan: &FlipPlan) {
     if ctx.mesh.vert_tri[b as usize] == t {
         ctx.mesh.vert_tri[b as usize] = t2;
     }
-    ctx.tstamp[tu] = ctx.gen;
-    ctx.tstamp[t2u] = ctx.gen;
+    ctx.touch(t);
+    ctx.touch(t2);
 }
 
 /// One flip sweep over the interior edges next to triangles modified since the last sweep. Returns the number of flips.
 pub fn pass(ctx: &mut Ctx) -> usize {
-    let since = ctx.last_flip;
     ctx.new_pass();
-    ctx.last_flip = ctx.gen;
-    let nt = ctx.mesh.n_tris();
+    let from = ctx.flip_pos;
+    ctx.flip_pos = ctx.log.len();
     let mut count = 0;
-    for t in 0..nt {
-        if ctx.mesh.is_deleted(t) {
-            continue;
-        }
+    for t in ctx.logged_since(from) {
         for i in 0..3 {
-            let nb = ctx.mesh.neighbours[t][i];
-            if nb == NONE || (nb as usize) < t {
+            if ctx.mesh.neighbours[t as usize][i] == NONE {
                 continue;
             }
-            // Only edges next to a triangle modified since the last flip pass.
-            if ctx.tstamp[t] < since && ctx.tstamp[nb as usize] < since {
-                continue;
-            }
-            if let Some(plan) = check(ctx, t as u32, i) {
+            if let Some(plan) = check(ctx, t, i) {
                 apply(ctx, &plan);
                 count += 1;
             }

@@ -135,10 +135,7 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
         }
     }
     // Quality: the star must not be worse than the cavity beyond the floor.
-    let q_old = cavity
-        .iter()
-        .map(|&c| ctx.q(mesh.tris[c as usize]))
-        .fold(1.0, f64::max);
+    let q_old = cavity.iter().map(|&c| ctx.q_tri(c)).fold(1.0, f64::max);
     let mut q_new: f64 = 1.0;
     for &(u, w, ..) in &boundary {
         let pts = [p, mesh.points[u as usize], mesh.points[w as usize]];
@@ -185,7 +182,7 @@ pub fn apply(ctx: &mut Ctx, plan: &InsertPlan) -> u32 {
         ctx.mesh.tri_ref[tu] = tref;
         ctx.mesh.edge_ref[tu] = [r, 0, 0];
         ctx.mesh.neighbours[tu] = [NONE; 3];
-        ctx.tstamp[tu] = ctx.gen;
+        ctx.touch(t);
         ctx.link(t, 0, nb, j as usize);
         ctx.mesh.vert_tri[u as usize] = t;
     }

@@ -52,7 +52,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
             (mv.yy + ma.yy + mb.yy) / 3.0,
         );
         target += ideal_apex(ctx.p(a), ctx.p(b), &m);
-        q_old = q_old.max(ctx.q(tri));
+        q_old = q_old.max(ctx.q_tri(t));
     }
     target /= ctx.fan.len() as f64;
     if !target.is_finite() {
@@ -109,8 +109,8 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     if !ctx.fast_q {
         ctx.logm[vu] = m.log();
     }
-    for &t in &ctx.fan {
-        ctx.tstamp[t as usize] = ctx.gen;
+    for k in 0..ctx.fan.len() {
+        ctx.touch(ctx.fan[k]);
     }
     for (f, &x) in ctx.fields.iter_mut().zip(&ctx.scratch_f) {
         f[vu] = x;
@@ -127,11 +127,11 @@ pub fn pass(ctx: &mut Ctx) -> usize {
         if ctx.mesh.vert_tri[v as usize] == NONE {
             continue;
         }
-        ctx.load_fan(v);
         // Only vertices whose ball changed since the last smoothing pass.
-        if ctx.fan.iter().all(|&t| ctx.tstamp[t as usize] < since) {
+        if ctx.vmod[v as usize] < since {
             continue;
         }
+        ctx.load_fan(v);
         if let Some(plan) = check_loaded(ctx, v) {
             apply(ctx, &plan);
             count += 1;

@@ -70,6 +70,15 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<SplitPlan> {
     })
 }
 
+/// Sort key of a split candidate: longest first by classes of a quarter octave (edges of
+/// length 1.41 to 2^24), then by triangle index — which keeps the new vertices (appended in this
+/// order) close in memory to their neighbours — then local edge.
+#[inline]
+fn split_key(l: f64, t: u32, i: usize) -> u64 {
+    let class = (96.0 - (4.0 * l.log2()).floor()).clamp(0.0, 255.0) as u64;
+    (class << 40) | (u64::from(t) << 2) | i as u64
+}
+
 /// Applies a split: returns the new vertex. Metric and fields at the new vertex come from the
 /// source when it has them, else by interpolation along the edge.
 pub fn apply(ctx: &mut Ctx, plan: &SplitPlan) -> u32 {
@@ -95,7 +104,7 @@ pub fn apply(ctx: &mut Ctx, plan: &SplitPlan) -> u32 {
     ctx.mesh.tris[tu] = [c, a, m];
     ctx.mesh.edge_ref[tu] = [r_ab, 0, r_ca];
     ctx.mesh.neighbours[tu] = [NONE, NONE, n_ca];
-    ctx.tstamp[tu] = ctx.gen;
+    ctx.touch(t);
     let t1 = ctx.push_tri([c, m, b], tref);
     ctx.mesh.edge_ref[t1 as usize] = [r_ab, r_bc, 0];
     ctx.link(t, 1, t1, 2);
@@ -125,7 +134,7 @@ pub fn apply(ctx: &mut Ctx, plan: &SplitPlan) -> u32 {
         ctx.mesh.tris[t2u] = [d, b, m];
         ctx.mesh.edge_ref[t2u] = [r_ab, 0, r_db];
         ctx.mesh.neighbours[t2u] = [NONE, NONE, n_db];
-        ctx.tstamp[t2u] = ctx.gen;
+        ctx.touch(t2);
         let t3 = ctx.push_tri([d, m, a], tref2);
         ctx.mesh.edge_ref[t3 as usize] = [r_ab, r_ad, 0];
         ctx.link(t2, 1, t3, 2);
@@ -145,36 +154,27 @@ pub fn apply(ctx: &mut Ctx, plan: &SplitPlan) -> u32 {
 /// per pass (an independent set). With `params.insertion` the Delaunay insertion kernel
 /// ([`super::insert`]) is tried first on unlabelled interior edges. Returns the number of new
 /// vertices.
-pub fn pass(ctx: &mut Ctx, cand: &mut Vec<(f64, u32, u8)>) -> usize {
-    let since = ctx.last_split;
+pub fn pass(ctx: &mut Ctx, cand: &mut Vec<u64>) -> usize {
     ctx.new_pass();
-    ctx.last_split = ctx.gen;
+    let from = ctx.split_pos;
+    ctx.split_pos = ctx.log.len();
     cand.clear();
-    let nt = ctx.mesh.n_tris();
     let l_max = ctx.params.l_max;
-    for t in 0..nt {
-        if ctx.mesh.is_deleted(t) {
-            continue;
-        }
-        let tri = ctx.mesh.tris[t];
+    // Only edges of triangles modified since the last split pass (an edge shared by two logged
+    // triangles is listed twice; the second is skipped below once the first split stamps it).
+    for t in ctx.logged_since(from) {
+        let tri = ctx.mesh.tris[t as usize];
         for i in 0..3 {
-            let nb = ctx.mesh.neighbours[t][i];
-            if nb != NONE && (nb as usize) < t {
-                continue;
-            }
-            // Only edges of triangles modified since the last split pass.
-            if ctx.tstamp[t] < since && (nb == NONE || ctx.tstamp[nb as usize] < since) {
-                continue;
-            }
             let l = ctx.len(tri[next(i)], tri[prev(i)]);
             if l > l_max {
-                cand.push((l, t as u32, i as u8));
+                cand.push(split_key(l, t, i));
             }
         }
     }
-    cand.sort_unstable_by(|x, y| y.0.total_cmp(&x.0));
+    cand.sort_unstable();
     let mut count = 0;
-    for &(_, t, i) in cand.iter() {
+    for &key in cand.iter() {
+        let (t, i) = ((key >> 2) as u32, (key & 3) as u8);
         let tu = t as usize;
         if ctx.tstamp[tu] == ctx.gen {
             continue;

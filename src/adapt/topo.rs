@@ -48,13 +48,25 @@ pub struct Ctx<'a> {
     pub(crate) tstamp: Vec<u32>,
     /// Per-vertex pass stamp.
     pub(crate) vstamp: Vec<u32>,
+    /// Per-vertex generation of the last change of its ball (a triangle holding it was touched):
+    /// vertex passes skip vertices with `vmod < since` without walking their fans.
+    pub(crate) vmod: Vec<u32>,
+    /// Every triangle touched, in order (with repeats): the split and flip passes examine only
+    /// the entries logged since their previous pass (`split_pos`, `flip_pos`), so a pass costs
+    /// what changed, not the mesh size.
+    pub(crate) log: Vec<u32>,
+    pub(crate) split_pos: usize,
+    pub(crate) flip_pos: usize,
+    /// Per-triangle visit mark of the current pass (deduplicates log entries).
+    pub(crate) tseen: Vec<u32>,
+    /// Cached `Q_ani` per triangle (NaN: not known; `touch` forgets it). Most operator checks
+    /// compare against the current quality of unchanged triangles.
+    pub(crate) tq: Vec<std::cell::Cell<f64>>,
     pub(crate) gen: u32,
     /// Logarithms of the vertex metrics (element metrics are `exp` of their mean).
     pub(crate) logm: Vec<Sym2>,
-    /// Generation of the last flip / smoothing pass: only triangles modified since are examined.
-    pub(crate) last_flip: u32,
+    /// Generation of the last smoothing / collapse pass: only vertices modified since are examined.
     pub(crate) last_smooth: u32,
-    pub(crate) last_split: u32,
     pub(crate) last_collapse: u32,
     /// Use the arithmetic-mean element metric in operator decisions (faster; the default). Set
     /// with [`Ctx::exact_quality`].
@@ -87,11 +99,15 @@ impl<'a> Ctx<'a> {
             params,
             tstamp: vec![0; nt],
             vstamp: vec![0; nv],
+            vmod: vec![0; nv],
+            log: (0..nt as u32).collect(),
+            split_pos: 0,
+            flip_pos: 0,
+            tseen: vec![0; nt],
+            tq: vec![std::cell::Cell::new(f64::NAN); nt],
             gen: 1,
             logm,
-            last_flip: 0,
             last_smooth: 0,
-            last_split: 0,
             last_collapse: 0,
             fast_q: true,
             fan: Vec::with_capacity(16),
@@ -139,6 +155,19 @@ impl<'a> Ctx<'a> {
         } else {
             kernel::q_ani_log(tri.map(|v| self.p(v)), tri.map(|v| &self.logm[v as usize]))
         }
+    }
+
+    /// `Q_ani` of the live triangle `t` as it is now (cached until the triangle is touched).
+    #[inline]
+    pub(crate) fn q_tri(&self, t: u32) -> f64 {
+        let c = &self.tq[t as usize];
+        let q = c.get();
+        if !q.is_nan() {
+            return q;
+        }
+        let q = self.q(self.mesh.tris[t as usize]);
+        c.set(q);
+        q
     }
 
     /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with log-metric `lv`.
@@ -215,7 +244,98 @@ impl<'a> Ctx<'a> {
             f.push(x);
         }
         self.vstamp.push(self.gen);
+        self.vmod.push(self.gen);
         v
+    }
+
+    /// Marks triangle `t` (with its current vertices) as modified in this pass.
+    #[inline]
+    pub(crate) fn touch(&mut self, t: u32) {
+        let tu = t as usize;
+        if self.tstamp[tu] != self.gen {
+            self.log.push(t);
+        }
+        self.tstamp[tu] = self.gen;
+        self.tq[tu].set(f64::NAN);
+        for v in self.mesh.tris[tu] {
+            if v != NONE {
+                self.vmod[v as usize] = self.gen;
+            }
+        }
+    }
+
+    /// Drops deleted triangles and unused vertices and renumbers the rest along a space-filling
+    /// curve ([`Mesh2::compact_spatial`]), carrying the metric, fields and stamps along: the
+    /// operators' fan walks then touch memory that is close together.
+    pub(crate) fn renumber_spatially(&mut self) {
+        let (vmap, tmap) = self.mesh.compact_spatial();
+        let nv = self.mesh.n_points();
+        let nt = self.mesh.n_tris();
+        fn scatter<T: Copy>(src: &[T], map: &[u32], n: usize, fill: T) -> Vec<T> {
+            let mut out = vec![fill; n];
+            for (old, &new) in map.iter().enumerate() {
+                if new != NONE {
+                    out[new as usize] = src[old];
+                }
+            }
+            out
+        }
+        *self.metric = scatter(self.metric, &vmap, nv, Sym2::IDENTITY);
+        for f in self.fields.iter_mut() {
+            *f = scatter(f, &vmap, nv, 0.0);
+        }
+        if !self.fast_q {
+            self.logm = scatter(&self.logm, &vmap, nv, Sym2::IDENTITY);
+        }
+        self.vstamp = scatter(&self.vstamp, &vmap, nv, 0);
+        self.vmod = scatter(&self.vmod, &vmap, nv, 0);
+        self.tstamp = scatter(&self.tstamp, &tmap, nt, 0);
+        self.tseen = vec![0; nt];
+        self.tq = vec![std::cell::Cell::new(f64::NAN); nt];
+        // Keep the log entries some pass has not consumed yet, renumbered.
+        let lo = self.split_pos.min(self.flip_pos);
+        let mut kept = Vec::with_capacity(self.log.len() - lo);
+        let (mut sp, mut fp) = (0, 0);
+        for k in lo..=self.log.len() {
+            if k == self.split_pos {
+                sp = kept.len();
+            }
+            if k == self.flip_pos {
+                fp = kept.len();
+            }
+            if let Some(&t) = self.log.get(k) {
+                let new = tmap[t as usize];
+                if new != NONE {
+                    kept.push(new);
+                }
+            }
+        }
+        self.log = kept;
+        self.split_pos = sp;
+        self.flip_pos = fp;
+    }
+
+    /// The live triangles logged since position `from`, each once, in index order (which the
+    /// spatial renumbering makes a memory-friendly order).
+    pub(crate) fn logged_since(&mut self, from: usize) -> Vec<u32> {
+        let mut out = Vec::with_capacity(self.log.len().saturating_sub(from));
+        for k in from..self.log.len() {
+            let t = self.log[k];
+            let tu = t as usize;
+            if self.tseen[tu] != self.gen && !self.mesh.is_deleted(tu) {
+                self.tseen[tu] = self.gen;
+                out.push(t);
+            }
+        }
+        if out.len() > self.tseen.len() / 16 {
+            // Many: one sequential sweep of the marks is cheaper than sorting.
+            out.clear();
+            let gen = self.gen;
+            out.extend((0..self.tseen.len() as u32).filter(|&t| self.tseen[t as usize] == gen));
+        } else {
+            out.sort_unstable();
+        }
+        out
     }
 
     /// Appends a triangle (neighbours unset) and returns its index.
@@ -226,6 +346,12 @@ impl<'a> Ctx<'a> {
         self.mesh.edge_ref.push([0; 3]);
         self.mesh.tri_ref.push(tref);
         self.tstamp.push(self.gen);
+        self.tseen.push(0);
+        self.tq.push(std::cell::Cell::new(f64::NAN));
+        self.log.push(t);
+        for v in tri {
+            self.vmod[v as usize] = self.gen;
+        }
         t
     }
 

@@ -32,7 +32,7 @@ use super::evaluate::{check_field, FieldEvaluator, Inflow, Interpolation};
 use super::interim::DUNAVANT4;
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
-use crate::mesh::Mesh2;
+use crate::mesh::{Location, Mesh2};
 use rayon::prelude::*;
 
 /// Which discrete form of `u^{n+1} = u^n ∘ X^n` is computed.
@@ -55,6 +55,9 @@ pub struct AdvectOptions {
     pub inflow: Inflow,
     /// Relative residual tolerance of the mass-matrix solve (L2 form).
     pub cg_tol: f64,
+    /// L2 form only: clamp each new value to the range of the old field on the triangle
+    /// containing the foot of its vertex ([`limit_to_feet`]).
+    pub limit: bool,
 }
 
 impl Default for AdvectOptions {
@@ -65,6 +68,7 @@ impl Default for AdvectOptions {
             form: Form::L2Projection { subdivisions: 0 },
             inflow: Inflow::Nearest,
             cg_tol: 1e-12,
+            limit: false,
         }
     }
 }
@@ -88,7 +92,39 @@ pub fn advect<V: Velocity + ?Sized>(
     }
     let eval = FieldEvaluator::new(old, u_old, opts.interp, opts.inflow.clone())?;
     let map = |x: DVec2| foot(v, x, t0, t1, &opts.foot);
-    pull_back(&eval, new, &map, opts.form, opts.cg_tol)
+    let mut u = pull_back(&eval, new, &map, opts.form, opts.cg_tol)?;
+    if opts.limit && opts.form != Form::Nodal {
+        limit_to_feet(old, u_old, new, &map, &mut u)?;
+    }
+    Ok(u)
+}
+
+/// Clamps `u_i` (on `new`) to `[min, max]` of `u_old` over the vertices of the old triangle
+/// containing the foot `map(x_i)` (feet outside the old mesh, which take the inflow value, are
+/// left alone): the nodal
+/// value `u_old(X(x_i))` lies in that range, so the limiter removes only the over- and
+/// undershoots of the L2 projection near kinks (new extrema, which near the zero level make
+/// spurious small loops), and keeps linear fields exact.
+pub fn limit_to_feet(
+    old: &Mesh2,
+    u_old: &[f64],
+    new: &Mesh2,
+    map: &(dyn Fn(DVec2) -> DVec2 + Sync),
+    u: &mut [f64],
+) -> Result<()> {
+    let feet: Vec<DVec2> = new.points.par_iter().map(|&x| map(x)).collect();
+    let loc = locate_all(old, &feet, None)?;
+    u.par_iter_mut().zip(&loc).for_each(|(ui, l)| {
+        let Location::Inside { tri, .. } = *l else {
+            return;
+        };
+        let tri = old.tris[tri as usize];
+        let vals = tri.map(|k| u_old[k as usize]);
+        let lo = vals[0].min(vals[1]).min(vals[2]);
+        let hi = vals[0].max(vals[1]).max(vals[2]);
+        *ui = ui.clamp(lo, hi);
+    });
+    Ok(())
 }
 
 /// `u ∘ map` on the mesh `new`, in nodal or L2-projected form, where `eval` evaluates `u` on

@@ -116,7 +116,14 @@ impl Default for ZalesakOptions {
             revolutions: 1.0,
             fixed_point_iterations: 5,
             fixed_point_tol: 1e-4,
-            advect: AdvectOptions::default(),
+            // Limited L2 projection (`AdvectOptions::limit`): without the limiter the projection
+            // overshoots at a reflex slot corner and leaves a small spurious loop of the zero
+            // level (area -2.9e-4, perimeter +1.3e-3, interface distance 2.9e-3); with it the
+            // corner is only rounded (area -3.4e-4, perimeter -2.1e-3, distance 2.4e-3).
+            advect: AdvectOptions {
+                limit: true,
+                ..AdvectOptions::default()
+            },
             redistance: false,
             mass_correction: false,
             sources: false,

@@ -24,6 +24,9 @@ pub struct ZalesakArgs {
     /// Periods per revolution (16 = steps of pi/8).
     #[arg(long, default_value_t = 16)]
     periods: usize,
+    /// Limit the L2-projected values to the range of the old field at the feet (on/off).
+    #[arg(long)]
+    limit: Option<bool>,
     /// Smallest mesh size.
     #[arg(long)]
     hmin: Option<f64>,
@@ -77,6 +80,8 @@ pub fn zalesak(a: ZalesakArgs) -> Result<()> {
     metric.eps = a.eps.unwrap_or(metric.eps);
     metric.band = a.band.unwrap_or(metric.band);
     metric.grade = a.grade.unwrap_or(metric.grade);
+    let mut advect = d.advect.clone();
+    advect.limit = a.limit.unwrap_or(advect.limit);
     let mut adapt = d.adapt.clone();
     adapt.max_cycles = a.max_cycles.unwrap_or(adapt.max_cycles);
     let opts = zalesak::ZalesakOptions {
@@ -90,6 +95,7 @@ pub fn zalesak(a: ZalesakArgs) -> Result<()> {
         },
         metric,
         adapt,
+        advect,
         initial_rounds: a.initial_rounds.unwrap_or(d.initial_rounds),
         fixed_point_iterations: a.fixed_point_iterations.unwrap_or(d.fixed_point_iterations),
         fixed_point_tol: a.fixed_point_tol.unwrap_or(d.fixed_point_tol),

@@ -24,6 +24,7 @@ mod cdt;
 mod check;
 mod grid;
 mod locate;
+mod order;
 mod topology;
 
 pub use cdt::{circle_points, from_polygon, DomainLoop, LoopKind, PolygonDomain};

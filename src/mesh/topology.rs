@@ -31,6 +31,60 @@ impl Mesh2 {
             Some(&t) if t != NONE => t,
             _ => return,
         };
+        // Walk counter-clockwise from the seed; a closed fan comes back to it (one traversal,
+        // the common case). An open fan hits the boundary: then the part clockwise of the seed
+        // is collected and emitted first, reversed.
+        let mut ccw = [NONE; 24];
+        let mut n = 0;
+        let mut t = seed;
+        loop {
+            if n == ccw.len() {
+                return self.for_each_fan_triangle_long(v, seed, f);
+            }
+            ccw[n] = t;
+            n += 1;
+            let i = match self.local_index(t as usize, v) {
+                Some(i) => i,
+                None => return,
+            };
+            // Counter-clockwise: cross the edge (v, tri[prev(i)]), which is local edge next(i).
+            let after = self.neighbours[t as usize][next(i)];
+            if after == seed {
+                ccw[..n].iter().for_each(|&t| f(t));
+                return;
+            }
+            if after == NONE {
+                break;
+            }
+            t = after;
+        }
+        let mut cw = [NONE; 24];
+        let mut m = 0;
+        let mut t = seed;
+        loop {
+            let i = match self.local_index(t as usize, v) {
+                Some(i) => i,
+                None => return,
+            };
+            // The edge (v, tri[next(i)]) is local edge prev(i); the triangle across it precedes
+            // us in counter-clockwise order.
+            let before = self.neighbours[t as usize][prev(i)];
+            if before == NONE {
+                break;
+            }
+            if m == cw.len() {
+                return self.for_each_fan_triangle_long(v, seed, f);
+            }
+            cw[m] = before;
+            m += 1;
+            t = before;
+        }
+        cw[..m].iter().rev().for_each(|&t| f(t));
+        ccw[..n].iter().for_each(|&t| f(t));
+    }
+
+    /// [`Mesh2::for_each_fan_triangle`] for fans of more than 24 triangles (two traversals).
+    fn for_each_fan_triangle_long(&self, v: u32, seed: u32, mut f: impl FnMut(u32)) {
         // Rotate clockwise to the start of an open fan (or back to the seed for a closed one).
         let mut start = seed;
         loop {
@@ -38,8 +92,6 @@ impl Mesh2 {
                 Some(i) => i,
                 None => return,
             };
-            // The edge (v, tri[next(i)]) is local edge prev(i); the triangle across it precedes us
-            // in counter-clockwise order.
             let before = self.neighbours[start as usize][prev(i)];
             if before == NONE {
                 break;
@@ -56,7 +108,6 @@ impl Mesh2 {
                 Some(i) => i,
                 None => return,
             };
-            // Counter-clockwise: cross the edge (v, tri[prev(i)]), which is local edge next(i).
             let after = self.neighbours[t as usize][next(i)];
             if after == NONE || after == start {
                 return;
@@ -223,47 +274,57 @@ impl Mesh2 {
     /// Removes deleted triangles and unreferenced vertices, renumbering everything. Returns the map
     /// old vertex index -> new index (`NONE` for removed vertices).
     pub fn compact(&mut self) -> Vec<u32> {
+        let used = self.used_vertices();
+        let vorder: Vec<u32> = (0..self.points.len() as u32)
+            .filter(|&v| used[v as usize])
+            .collect();
+        let torder: Vec<u32> = self.live_tris().map(|t| t as u32).collect();
+        self.renumber(&vorder, &torder).0
+    }
+
+    /// Which vertices some live triangle references.
+    pub(crate) fn used_vertices(&self) -> Vec<bool> {
         let mut used = vec![false; self.points.len()];
-        let live: Vec<usize> = self.live_tris().collect();
-        for &t in &live {
+        for t in self.live_tris() {
             for &v in &self.tris[t] {
                 used[v as usize] = true;
             }
         }
+        used
+    }
+
+    /// Renumbers the mesh: `vorder` lists the old indices of the kept vertices in their new order,
+    /// `torder` the old indices of the kept (live) triangles in theirs. Every live triangle must be
+    /// listed and every vertex they reference. Returns the maps old -> new (`NONE` for dropped)
+    /// for vertices and triangles.
+    pub(crate) fn renumber(&mut self, vorder: &[u32], torder: &[u32]) -> (Vec<u32>, Vec<u32>) {
         let mut vmap = vec![NONE; self.points.len()];
-        let mut nv = 0u32;
-        for (v, &u) in used.iter().enumerate() {
-            if u {
-                vmap[v] = nv;
-                nv += 1;
-            }
+        for (new, &old) in vorder.iter().enumerate() {
+            vmap[old as usize] = new as u32;
         }
         let mut tmap = vec![NONE; self.tris.len()];
-        for (new, &t) in live.iter().enumerate() {
-            tmap[t] = new as u32;
+        for (new, &old) in torder.iter().enumerate() {
+            tmap[old as usize] = new as u32;
         }
-        fn keep<T: Copy>(v: &[T], flags: &[bool]) -> Vec<T> {
-            v.iter()
-                .zip(flags)
-                .filter_map(|(x, &f)| f.then_some(*x))
-                .collect()
+        fn gather<T: Copy>(v: &[T], order: &[u32]) -> Vec<T> {
+            order.iter().map(|&o| v[o as usize]).collect()
         }
-        self.points = keep(&self.points, &used);
-        self.vert_ref = keep(&self.vert_ref, &used);
-        self.corner = keep(&self.corner, &used);
-        self.required = keep(&self.required, &used);
+        self.points = gather(&self.points, vorder);
+        self.vert_ref = gather(&self.vert_ref, vorder);
+        self.corner = gather(&self.corner, vorder);
+        self.required = gather(&self.required, vorder);
         let remap_t = |t: u32| if t == NONE { NONE } else { tmap[t as usize] };
-        self.tris = live
+        self.tris = torder
             .iter()
-            .map(|&t| self.tris[t].map(|v| vmap[v as usize]))
+            .map(|&t| self.tris[t as usize].map(|v| vmap[v as usize]))
             .collect();
-        self.neighbours = live
+        self.neighbours = torder
             .iter()
-            .map(|&t| self.neighbours[t].map(remap_t))
+            .map(|&t| self.neighbours[t as usize].map(remap_t))
             .collect();
-        self.tri_ref = live.iter().map(|&t| self.tri_ref[t]).collect();
-        self.edge_ref = live.iter().map(|&t| self.edge_ref[t]).collect();
+        self.tri_ref = gather(&self.tri_ref, torder);
+        self.edge_ref = gather(&self.edge_ref, torder);
         self.rebuild_vertex_seeds();
-        vmap
+        (vmap, tmap)
     }
 }

@@ -142,8 +142,29 @@ impl Sym2 {
     /// Applies `f` to the eigenvalues: `R diag(f(l)) R^T`.
     #[inline]
     pub fn map_eigen(&self, f: impl Fn(f64) -> f64) -> Sym2 {
-        let (l, v) = self.eigen();
-        Sym2::from_eigen([f(l[0]), f(l[1])], v)
+        let mean = 0.5 * (self.xx + self.yy);
+        let half_diff = 0.5 * (self.xx - self.yy);
+        let r = half_diff.hypot(self.xy);
+        if r == 0.0 || self.xy == 0.0 {
+            let (l, v) = self.eigen();
+            return Sym2::from_eigen([f(l[0]), f(l[1])], v);
+        }
+        // Without trigonometry: the spectral projector on the largest eigenvalue is
+        // `v v^T = (I + [[cos 2θ, sin 2θ], [sin 2θ, -cos 2θ]]) / 2` with `cos 2θ = half_diff / r`,
+        // `sin 2θ = xy / r`; the other projector is `I - v v^T`. Eigenvalues as in `eigen`.
+        let (c2, s2) = (half_diff / r, self.xy / r);
+        let det = self.det();
+        let (mut lo, mut hi) = (mean - r, mean + r);
+        if hi.abs() >= lo.abs() {
+            if det > 0.0 && hi != 0.0 {
+                lo = det / hi;
+            }
+        } else if det > 0.0 && lo != 0.0 {
+            hi = det / lo;
+        }
+        let (fl, fh) = (f(lo), f(hi));
+        let (sum, diff) = (0.5 * (fh + fl), 0.5 * (fh - fl));
+        Sym2::new(sum + diff * c2, diff * s2, sum - diff * c2)
     }
 
     /// `|M|`: absolute values of the eigenvalues (used on Hessians).

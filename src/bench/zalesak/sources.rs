@@ -20,7 +20,7 @@
 //! All numbers are relative to the exact area / perimeter.
 
 use super::{exact_level_set, ZalesakOptions, EXACT_AREA, EXACT_PERIMETER};
-use crate::advect::galerkin::pull_back;
+use crate::advect::galerkin::{limit_to_feet, pull_back, Form};
 use crate::advect::{self, foot, FieldEvaluator, Rotation};
 use crate::error::Result;
 use crate::geom::DVec2;
@@ -74,7 +74,10 @@ impl ErrorSources {
         let (s, c) = (t1 - t0).sin_cos();
         let exact_foot = move |x: DVec2| DVec2::new(c * x.x + s * x.y, -s * x.x + c * x.y);
         let eval = FieldEvaluator::new(old, &ue0, a.interp, a.inflow.clone())?;
-        let ux = pull_back(&eval, new, &exact_foot, a.form, a.cg_tol)?;
+        let mut ux = pull_back(&eval, new, &exact_foot, a.form, a.cg_tol)?;
+        if a.limit && a.form != Form::Nodal {
+            limit_to_feet(old, &ue0, new, &exact_foot, &mut ux)?;
+        }
         let v = Rotation { omega: 1.0 };
         let ur = advect::advect(old, &ue0, new, &v, t0, t1, a)?;
         let (ar, pr) = measures(new, &ue1)?;
