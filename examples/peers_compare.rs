@@ -15,7 +15,8 @@
 //! vertices; `mmg2d_O3 -in BG.mesh -sol M.sol` against our `adapt` on the same files →
 //! `peers_speed.csv`.
 //!
-//! Usage: `cargo run --release --example peers_compare -- [OUT_DIR] [--sweep-only|--speed-only]`
+//! Usage: `cargo run --release --example peers_compare -- [OUT_DIR] [--sweep-only|--speed-only]
+//! [--speed-eps=E]`
 //! (default `OUT_DIR` = `target/peers`). Peers missing on `PATH` are reported and skipped;
 //! `ANISOMESH_PEERS_KINDS=mmg2d-metric,bamg-metric,...` restricts the sweep to those adapters.
 
@@ -201,7 +202,12 @@ fn main() -> anisomesh::Result<()> {
         println!("wrote {}", out.join("peers_sweep.csv").display());
     }
     if !quick && !sweep_only {
-        speed_case(&out, 100, 1e-5)?;
+        // `--speed-eps=E` picks the accuracy (default 1e-5, the case).
+        let speed_eps = args
+            .iter()
+            .find_map(|a| a.strip_prefix("--speed-eps=")?.parse().ok())
+            .unwrap_or(1e-5);
+        speed_case(&out, 100, speed_eps)?;
         println!("wrote {}", out.join("peers_speed.csv").display());
     }
     Ok(())

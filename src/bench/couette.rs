@@ -68,7 +68,7 @@ impl Default for CouetteOptions {
             fitted: false,
             eps: 1e-4,
             hmin: 1e-3,
-            hmax: 0.05,
+            hmax: 0.06,
             band: 1e-3,
             grade: 0.3,
             interface: InterfaceViscosity::Harmonic,

@@ -4,7 +4,7 @@
 //! viscosity rule).
 //!
 //! Adapted family: one scale `s` for all sizes of the eq. (6) metric, `ε = 1e-4 s²`,
-//! `hmin = band = 1e-3 s`, `hmax = 0.05 s`, and the growth rate of the sizes away from the
+//! `hmin = band = 1e-3 s`, `hmax = 0.06 s`, and the growth rate of the sizes away from the
 //! interface `grade = 0.3 s` (sizes `h ≈ 0.3 s d` at distance `d`: with a fixed grade the flow
 //! near the disk is not refined and ω stalls near 1e-4). The default run is `s = 1`; the mesh sizes scale
 //! like `s`, so the vertex count roughly like `1/s²`. Fitted family: edge length `h` on the circle,
@@ -32,7 +32,7 @@ pub fn adapted_options(s: f64, interface: InterfaceViscosity) -> CouetteOptions 
         eps: 1e-4 * s * s,
         hmin: 1e-3 * s,
         band: 1e-3 * s,
-        hmax: 0.05 * s,
+        hmax: 0.06 * s,
         grade: 0.3 * s,
         interface,
         figures: false,
