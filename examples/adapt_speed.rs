@@ -2,13 +2,14 @@
 //! geometric metric of 004 eq. (6) of the Zalesak disk with `eps = hmin` (the files that
 //! `anisomesh adapt --input BG.mesh --sol M.sol` reads, written by
 //! [`anisomesh::bench::peers::write_speed_case`]), adapted by [`anisomesh::adapt::adapt`] with the
-//! metric interpolated at new vertices, as mmg2d does with the same files. Prints the output size,
+//! metric interpolated at new vertices with sizes varying linearly, as mmg2d does with the same
+//! files (`ANISOMESH_LOG_INTERP=1`: log-Euclidean, which gives many more vertices). Prints the output size,
 //! the time per operator and the vertices per second for each `eps`.
 //!
 //! Usage: `cargo run --release --example adapt_speed -- [eps ...]` (default 1e-3 1e-4 3e-5 1e-5;
 //! `ANISOMESH_QUICK=1`: 1e-3 only). Set `RAYON_NUM_THREADS=1` for one thread.
 
-use anisomesh::adapt::{adapt, AdaptOptions, PassKind};
+use anisomesh::adapt::{adapt, AdaptOptions, MetricInterpolation, PassKind};
 use anisomesh::bench::peers::write_speed_case;
 use anisomesh::io;
 use anisomesh::metric::quality_stats;
@@ -39,13 +40,15 @@ fn main() -> anisomesh::Result<()> {
             _ => unreachable!("write_speed_case writes one tensor field"),
         };
         let t0 = Instant::now();
-        let rep = adapt(
-            &mut mesh,
-            &mut metric,
-            &mut [],
-            None,
-            &AdaptOptions::default(),
-        )?;
+        // As `anisomesh adapt --input BG.mesh --sol M.sol` (and mmg2d): sizes interpolated
+        // linearly between the background vertices; `ANISOMESH_LOG_INTERP=1`: log-Euclidean.
+        let interp = if std::env::var_os("ANISOMESH_LOG_INTERP").is_some() {
+            MetricInterpolation::LogEuclidean
+        } else {
+            MetricInterpolation::LinearSizes
+        };
+        let opts = AdaptOptions::default().interpolation(interp);
+        let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts)?;
         let secs = t0.elapsed().as_secs_f64();
         let q = quality_stats(&mesh, &metric);
         println!(

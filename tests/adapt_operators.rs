@@ -17,6 +17,7 @@ fn params() -> OpParams {
         q_max: 5.0,
         curve_tol: 0.0,
         insertion: false,
+        interpolation: Default::default(),
     }
 }
 
@@ -305,4 +306,53 @@ fn delaunay_insertion_builds_a_valid_star_and_keeps_area() {
     for (v, p) in mesh.points.iter().enumerate() {
         assert!((f[0][v] - (3.0 * p.x + p.y)).abs() < 1e-12);
     }
+}
+
+/// A metric known only on a coarse background (fine along the line x = 0.5, coarse elsewhere):
+/// both interpolation rules give a valid, conforming mesh; linear sizes (mmg2d's rule) give far
+/// fewer vertices than log-Euclidean, which keeps fine sizes over the whole background cell.
+#[test]
+fn metric_interpolation_rules_on_a_coarse_background() {
+    use anisomesh::adapt::{adapt, MetricInterpolation};
+    let mut counts = Vec::new();
+    for rule in [
+        MetricInterpolation::LogEuclidean,
+        MetricInterpolation::LinearSizes,
+    ] {
+        let mut mesh = square(10);
+        let mut metric: Vec<Sym2> = mesh
+            .points
+            .iter()
+            .map(|p| {
+                if (p.x - 0.5).abs() < 1e-9 {
+                    aniso(1e-4, 0.05)
+                } else {
+                    aniso(0.1, 0.1)
+                }
+            })
+            .collect();
+        let opts = AdaptOptions::default()
+            .interpolation(rule)
+            .check_each_pass(true);
+        let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts).unwrap();
+        mesh.check().unwrap();
+        let q = anisomesh::metric::quality_stats(&mesh, &metric);
+        println!(
+            "{rule:?}: {} vertices, {:.1}% in range, Q mean {:.3} max {:.2}, converged {}",
+            mesh.n_points(),
+            100.0 * q.edge_length_in_range,
+            q.q_ani_mean,
+            q.q_ani_max,
+            rep.converged
+        );
+        assert!(rep.converged, "{rule:?}");
+        assert!(q.edge_length_in_range >= 0.9, "{rule:?}: {q:?}");
+        counts.push(mesh.n_points());
+    }
+    assert!(
+        2 * counts[1] < counts[0],
+        "linear sizes {} vs log-Euclidean {}",
+        counts[1],
+        counts[0]
+    );
 }

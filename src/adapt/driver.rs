@@ -4,7 +4,7 @@
 //! metric and the fields.
 
 use super::sources::MetricSource;
-use super::topo::{Ctx, OpParams};
+use super::topo::{Ctx, MetricInterpolation, OpParams};
 use super::{collapse, flip, smooth, split};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh2, NONE};
@@ -35,6 +35,10 @@ pub struct AdaptOptions {
     pub final_sweeps: usize,
     /// Verify `Mesh2::check` after every pass and fail with the defect (for tests; costs time).
     pub check_each_pass: bool,
+    /// Metric interpolation at new vertices when no source gives the metric (default
+    /// log-Euclidean; `anisomesh adapt --input M --sol S` with a tensor field uses linear sizes,
+    /// as mmg2d does with the same files).
+    pub interpolation: MetricInterpolation,
 }
 
 impl Default for AdaptOptions {
@@ -48,6 +52,7 @@ impl Default for AdaptOptions {
             max_cycles: 20,
             final_sweeps: 3,
             check_each_pass: false,
+            interpolation: MetricInterpolation::LogEuclidean,
         }
     }
 }
@@ -86,6 +91,11 @@ impl AdaptOptions {
     /// Sets the number of final flip/smooth sweeps.
     pub fn final_sweeps(mut self, v: usize) -> Self {
         self.final_sweeps = v;
+        self
+    }
+    /// Sets the metric interpolation at new vertices.
+    pub fn interpolation(mut self, v: MetricInterpolation) -> Self {
+        self.interpolation = v;
         self
     }
     /// Turns on `check()` after every pass.
@@ -216,6 +226,7 @@ pub fn adapt(
         q_max: opts.q_max,
         curve_tol: opts.curve_tol,
         insertion: opts.insertion,
+        interpolation: opts.interpolation,
     };
     let mut rep = AdaptReport::default();
     {

@@ -46,4 +46,4 @@ pub use driver::{adapt, validate_inputs, AdaptOptions, AdaptReport, PassKind, Pa
 pub use report::{mesh_report, MeshReport};
 pub use shape::{adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
-pub use topo::{Ctx, OpParams, VClass};
+pub use topo::{Ctx, MetricInterpolation, OpParams, VClass};

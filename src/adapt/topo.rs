@@ -25,6 +25,21 @@ pub struct OpParams {
     /// Insert new vertices with the anisotropic Delaunay kernel (`insert.rs`) where possible
     /// instead of plain edge splits.
     pub insertion: bool,
+    /// How the metric at a new or moved vertex is interpolated when no source provides it.
+    pub interpolation: MetricInterpolation,
+}
+
+/// Interpolation of the vertex metric at new or moved vertices (when the metric source has
+/// none: a metric read from a file, or given only at the input vertices).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub enum MetricInterpolation {
+    /// Log-Euclidean mean ([`crate::metric::interpolate_log`]): sizes vary geometrically.
+    #[default]
+    LogEuclidean,
+    /// Sizes vary linearly in the simultaneous-reduction basis ([`crate::metric::lerp_sizes`],
+    /// the rule of MMG's `interpmet22`): between a fine and a coarse metric the sizes grow much
+    /// faster, so a metric known only on a coarse background yields far fewer vertices.
+    LinearSizes,
 }
 
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
@@ -383,6 +398,24 @@ impl<'a> Ctx<'a> {
         }
         match m {
             Some(m) => m,
+            None if self.params.interpolation == MetricInterpolation::LinearSizes => {
+                let m = |k: usize| &self.metric[verts[k] as usize];
+                match verts.len() {
+                    0 => Sym2::IDENTITY,
+                    1 => *m(0),
+                    n => {
+                        // Barycentric weights applied pairwise: ((v0, v1), v2).
+                        let (w0, w1) = (weights[0], weights[1]);
+                        let s01 = if w0 + w1 > 0.0 { w1 / (w0 + w1) } else { 0.5 };
+                        let m01 = crate::metric::lerp_sizes(m(0), m(1), s01);
+                        if n == 2 {
+                            m01
+                        } else {
+                            crate::metric::lerp_sizes(&m01, m(2), weights[2])
+                        }
+                    }
+                }
+            }
             None => {
                 let mut w: [(f64, &Sym2); 3] = [(0.0, &self.metric[0]); 3];
                 for (k, (&v, &wt)) in verts.iter().zip(weights).take(3).enumerate() {

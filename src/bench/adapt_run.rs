@@ -8,7 +8,7 @@
 
 use crate::adapt::{
     adapt, adapt_to_shape, mesh_report, AdaptOptions, AdaptReport, AnalyticLevelSetSource,
-    HessianMetric, LevelSetMetric, MeshReport, ShapeAdaptOptions,
+    HessianMetric, LevelSetMetric, MeshReport, MetricInterpolation, ShapeAdaptOptions,
 };
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
@@ -150,12 +150,14 @@ pub fn run(input: AdaptInput, opts: &AdaptRunOptions) -> Result<AdaptRunReport> 
             mut mesh,
             mut metric,
         } => {
+            // Conform to the metric as mmg2d does with the same files: sizes interpolated
+            // linearly between the given vertices.
             let rep = adapt(
                 &mut mesh,
                 &mut metric,
                 &mut [],
                 None,
-                &AdaptOptions::default(),
+                &AdaptOptions::default().interpolation(MetricInterpolation::LinearSizes),
             )?;
             (
                 mesh,
