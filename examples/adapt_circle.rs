@@ -69,9 +69,8 @@ fn main() -> anisomesh::Result<()> {
         PassKind::Flip,
         PassKind::Smooth,
     ] {
-        let ps: Vec<_> = rep.passes.iter().filter(|p| p.kind == kind).collect();
-        let secs: f64 = ps.iter().map(|p| p.seconds).sum();
-        println!("{kind:?}: {} passes, {:.3}s", ps.len(), secs);
+        let (passes, _, secs) = rep.pass_totals(kind);
+        println!("{kind:?}: {passes} passes, {secs:.3}s");
     }
     Ok(())
 }

@@ -9,7 +9,8 @@
 //! Usage: `cargo run --release --example adapt_speed -- [eps ...]` (default 1e-3 1e-4 3e-5 1e-5;
 //! `ANISOMESH_QUICK=1`: 1e-3 only). Set `RAYON_NUM_THREADS=1` for one thread.
 
-use anisomesh::adapt::{adapt, AdaptOptions, MetricInterpolation, PassKind};
+use anisomesh::adapt::{adapt, MetricInterpolation, PassKind};
+use anisomesh::bench::adapt_run::metric_file_options;
 use anisomesh::bench::peers::write_speed_case;
 use anisomesh::io;
 use anisomesh::metric::quality_stats;
@@ -47,7 +48,7 @@ fn main() -> anisomesh::Result<()> {
         } else {
             MetricInterpolation::LinearSizes
         };
-        let opts = AdaptOptions::default().interpolation(interp);
+        let opts = metric_file_options().interpolation(interp);
         let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts)?;
         let secs = t0.elapsed().as_secs_f64();
         let q = quality_stats(&mesh, &metric);
@@ -69,10 +70,8 @@ fn main() -> anisomesh::Result<()> {
             PassKind::Flip,
             PassKind::Smooth,
         ] {
-            let ps: Vec<_> = rep.passes.iter().filter(|p| p.kind == kind).collect();
-            let s: f64 = ps.iter().map(|p| p.seconds).sum();
-            let n: usize = ps.iter().map(|p| p.count).sum();
-            println!("    {kind:?}: {} passes, {n} ops, {s:.3} s", ps.len());
+            let (passes, n, s) = rep.pass_totals(kind);
+            println!("    {kind:?}: {passes} passes, {n} ops, {s:.3} s");
         }
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -20,7 +20,7 @@
 //! (default `OUT_DIR` = `target/peers`). Peers missing on `PATH` are reported and skipped;
 //! `ANISOMESH_PEERS_KINDS=mmg2d-metric,bamg-metric,...` restricts the sweep to those adapters.
 
-use anisomesh::adapt::{adapt, AdaptOptions};
+use anisomesh::adapt::adapt;
 use anisomesh::bench::peers::{
     self, find_program, measure, run_with_timeout, speed_case_metric, sweep, write_csv, PeerKind,
     PeerOptions, PeerResult,
@@ -121,13 +121,8 @@ fn speed_case(out: &std::path::Path, n: usize, eps: f64) -> anisomesh::Result<Ve
                     ))
                 }
             };
-            let rep = adapt(
-                &mut mesh,
-                &mut metric,
-                &mut [],
-                None,
-                &AdaptOptions::default(),
-            )?;
+            let opts = anisomesh::bench::adapt_run::metric_file_options();
+            let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts)?;
             let s = t0.elapsed().as_secs_f64();
             println!(
                 "anisomesh adapt: converged {} after {} cycles",

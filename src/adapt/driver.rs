@@ -4,7 +4,7 @@
 //! metric and the fields.
 
 use super::sources::MetricSource;
-use super::topo::{Ctx, MetricInterpolation, OpParams};
+use super::topo::{scatter, Ctx, MetricInterpolation, OpParams};
 use super::{collapse, flip, smooth, split};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh2, NONE};
@@ -154,6 +154,16 @@ pub struct AdaptReport {
 }
 
 impl AdaptReport {
+    /// Totals over the passes of one kind: `(number of passes, operations, seconds)`.
+    pub fn pass_totals(&self, kind: PassKind) -> (usize, usize, f64) {
+        self.passes
+            .iter()
+            .filter(|p| p.kind == kind)
+            .fold((0, 0, 0.0), |(n, c, s), p| {
+                (n + 1, c + p.count, s + p.seconds)
+            })
+    }
+
     /// Adds the counts, passes and time of `other` (one more adaptation round) to `self`;
     /// `converged` is left to the caller, whose stopping rule decides it.
     pub fn absorb(&mut self, other: &AdaptReport) {
@@ -304,19 +314,8 @@ pub fn adapt(
 pub(crate) fn compact_with_data(mesh: &mut Mesh2, metric: &mut Vec<Sym2>, fields: &mut [Vec<f64>]) {
     let vmap = mesh.compact();
     let n = mesh.n_points();
-    let remap = |dst_len: usize, vmap: &[u32], f: &mut dyn FnMut(usize, usize)| {
-        for (old, &new) in vmap.iter().enumerate() {
-            if new != NONE && (new as usize) < dst_len {
-                f(new as usize, old);
-            }
-        }
-    };
-    let mut m2 = vec![Sym2::IDENTITY; n];
-    remap(n, &vmap, &mut |new, old| m2[new] = metric[old]);
-    *metric = m2;
+    *metric = scatter(metric, &vmap, n, Sym2::IDENTITY);
     for f in fields.iter_mut() {
-        let mut g = vec![0.0; n];
-        remap(n, &vmap, &mut |new, old| g[new] = f[old]);
-        *f = g;
+        *f = scatter(f, &vmap, n, 0.0);
     }
 }

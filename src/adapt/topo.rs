@@ -286,15 +286,6 @@ impl<'a> Ctx<'a> {
         let (vmap, tmap) = self.mesh.compact_spatial();
         let nv = self.mesh.n_points();
         let nt = self.mesh.n_tris();
-        fn scatter<T: Copy>(src: &[T], map: &[u32], n: usize, fill: T) -> Vec<T> {
-            let mut out = vec![fill; n];
-            for (old, &new) in map.iter().enumerate() {
-                if new != NONE {
-                    out[new as usize] = src[old];
-                }
-            }
-            out
-        }
         *self.metric = scatter(self.metric, &vmap, nv, Sym2::IDENTITY);
         for f in self.fields.iter_mut() {
             *f = scatter(f, &vmap, nv, 0.0);
@@ -425,6 +416,18 @@ impl<'a> Ctx<'a> {
             }
         }
     }
+}
+
+/// `src` renumbered by `map` (old index -> new index, `NONE` for dropped entries) into a vector
+/// of length `n`; entries no old index maps to get `fill`.
+pub(crate) fn scatter<T: Copy>(src: &[T], map: &[u32], n: usize, fill: T) -> Vec<T> {
+    let mut out = vec![fill; n];
+    for (old, &new) in map.iter().enumerate() {
+        if new != NONE {
+            out[new as usize] = src[old];
+        }
+    }
+    out
 }
 
 /// Local index of `v` in `tri` (the caller knows it is there).

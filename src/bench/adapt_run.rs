@@ -20,6 +20,13 @@ use crate::plot::{mesh_png, Corner, Inset, MeshPlot, RGBColor};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
+/// The adaptation options of "conform to this metric" (`anisomesh adapt --input M --sol S` with a
+/// tensor field): the defaults with sizes interpolated linearly between the given vertices, as
+/// mmg2d does with the same files.
+pub fn metric_file_options() -> AdaptOptions {
+    AdaptOptions::default().interpolation(MetricInterpolation::LinearSizes)
+}
+
 /// What to adapt to.
 pub enum AdaptInput {
     /// An implicit shape (exact signed distance) on the rectangle `domain`.
@@ -150,14 +157,12 @@ pub fn run(input: AdaptInput, opts: &AdaptRunOptions) -> Result<AdaptRunReport> 
             mut mesh,
             mut metric,
         } => {
-            // Conform to the metric as mmg2d does with the same files: sizes interpolated
-            // linearly between the given vertices.
             let rep = adapt(
                 &mut mesh,
                 &mut metric,
                 &mut [],
                 None,
-                &AdaptOptions::default().interpolation(MetricInterpolation::LinearSizes),
+                &metric_file_options(),
             )?;
             (
                 mesh,
