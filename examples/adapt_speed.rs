@@ -64,6 +64,11 @@ fn main() -> anisomesh::Result<()> {
             q.q_ani_max
         );
         println!("    cycles {} converged {}", rep.cycles, rep.converged);
+        if std::env::var_os("ANISOMESH_PASSES").is_some() {
+            for p in &rep.passes {
+                println!("      {:?} {} {:.3}", p.kind, p.count, p.seconds);
+            }
+        }
         for kind in [
             PassKind::Split,
             PassKind::Collapse,

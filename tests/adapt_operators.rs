@@ -356,3 +356,55 @@ fn metric_interpolation_rules_on_a_coarse_background() {
         counts[0]
     );
 }
+
+/// The Delaunay insertion kernel gives the new vertex the metric of the chosen interpolation
+/// rule (as plain splits do): linear sizes between the edge ends, or the log-Euclidean mean.
+#[test]
+fn insertion_kernel_interpolates_the_metric_by_the_chosen_rule() {
+    use anisomesh::adapt::MetricInterpolation;
+    use anisomesh::metric::{interpolate_log, lerp_sizes};
+    for rule in [
+        MetricInterpolation::LogEuclidean,
+        MetricInterpolation::LinearSizes,
+    ] {
+        let mut mesh = square(4);
+        let mut metric: Vec<Sym2> = mesh
+            .points
+            .iter()
+            .map(|p| aniso(0.01 + 0.2 * p.x, 0.05 + 0.1 * p.y))
+            .collect();
+        let mut p = params();
+        p.insertion = true;
+        p.interpolation = rule;
+        let ctx = Ctx::new(&mut mesh, &mut metric, &mut [], None, p);
+        let mut ctx = ctx;
+        let mut checked = 0;
+        for t in 0..ctx.mesh.n_tris() {
+            for i in 0..3 {
+                let Some(sp) = split::check(&ctx, t as u32, i) else {
+                    continue;
+                };
+                let Some(ip) = insert::check(&mut ctx, &sp) else {
+                    continue;
+                };
+                let [a, b] = ip.ends;
+                let (ma, mb) = (ctx.metric[a as usize], ctx.metric[b as usize]);
+                let want = match rule {
+                    MetricInterpolation::LinearSizes => lerp_sizes(&ma, &mb, ip.s),
+                    MetricInterpolation::LogEuclidean => {
+                        interpolate_log(&[(1.0 - ip.s, ma), (ip.s, mb)])
+                    }
+                };
+                let d = (ip.m.xx - want.xx).abs()
+                    + (ip.m.xy - want.xy).abs()
+                    + (ip.m.yy - want.yy).abs();
+                assert!(
+                    d <= 1e-9 * want.xx.abs().max(want.yy.abs()),
+                    "{rule:?}: {ip:?} vs {want:?}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 10, "{rule:?}: {checked} insertions checked");
+    }
+}

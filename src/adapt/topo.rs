@@ -389,30 +389,33 @@ impl<'a> Ctx<'a> {
         }
         match m {
             Some(m) => m,
-            None if self.params.interpolation == MetricInterpolation::LinearSizes => {
-                let m = |k: usize| &self.metric[verts[k] as usize];
-                match verts.len() {
-                    0 => Sym2::IDENTITY,
-                    1 => *m(0),
-                    n => {
-                        // Barycentric weights applied pairwise: ((v0, v1), v2).
-                        let (w0, w1) = (weights[0], weights[1]);
-                        let s01 = if w0 + w1 > 0.0 { w1 / (w0 + w1) } else { 0.5 };
-                        let m01 = crate::metric::lerp_sizes(m(0), m(1), s01);
-                        if n == 2 {
-                            m01
-                        } else {
-                            crate::metric::lerp_sizes(&m01, m(2), weights[2])
-                        }
-                    }
+            None => self.interpolate_metric(verts, weights),
+        }
+    }
+
+    /// The metric interpolated with `weights` over `verts` (at most three) by the rule of
+    /// `params.interpolation`: log-Euclidean, or linear sizes applied pairwise `((v0, v1), v2)`.
+    pub(crate) fn interpolate_metric(&self, verts: &[u32], weights: &[f64]) -> Sym2 {
+        let m = |k: usize| &self.metric[verts[k] as usize];
+        match (self.params.interpolation, verts.len()) {
+            (_, 0) => Sym2::IDENTITY,
+            (_, 1) => *m(0),
+            (MetricInterpolation::LinearSizes, n) => {
+                let (w0, w1) = (weights[0], weights[1]);
+                let s01 = if w0 + w1 > 0.0 { w1 / (w0 + w1) } else { 0.5 };
+                let m01 = crate::metric::lerp_sizes(m(0), m(1), s01);
+                if n == 2 {
+                    m01
+                } else {
+                    crate::metric::lerp_sizes(&m01, m(2), weights[2])
                 }
             }
-            None => {
+            (MetricInterpolation::LogEuclidean, n) => {
                 let mut w: [(f64, &Sym2); 3] = [(0.0, &self.metric[0]); 3];
                 for (k, (&v, &wt)) in verts.iter().zip(weights).take(3).enumerate() {
                     w[k] = (wt, &self.metric[v as usize]);
                 }
-                kernel::interpolate(&w[..verts.len().min(3)])
+                kernel::interpolate(&w[..n.min(3)])
             }
         }
     }
