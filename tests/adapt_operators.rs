@@ -408,3 +408,58 @@ fn insertion_kernel_interpolates_the_metric_by_the_chosen_rule() {
         assert!(checked >= 10, "{rule:?}: {checked} insertions checked");
     }
 }
+
+/// The passes evaluate their checks in parallel when there are several threads and enough work,
+/// but use a result only where the sequential check would see the same state: the adapted mesh
+/// is bit-identical for 1 and 2 threads (a case large enough for the parallel paths).
+#[test]
+fn adaptation_is_identical_for_one_and_two_threads() {
+    use anisomesh::adapt::{adapt, MetricInterpolation};
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut mesh = square(30);
+            // Fine and stretched along the circle of radius 0.3 about the centre.
+            let mut metric: Vec<Sym2> = mesh
+                .points
+                .iter()
+                .map(|p| {
+                    let d = *p - DVec2::splat(0.5);
+                    let r = d.length();
+                    let h_n = 0.0005 + 0.1 * (r - 0.3).abs();
+                    let n = d.try_normalize().unwrap_or(DVec2::X);
+                    Sym2::from_eigen([1.0 / (h_n * h_n), 1.0 / 0.01f64.powi(2)], [n, n.perp()])
+                })
+                .collect();
+            let opts = AdaptOptions::default().interpolation(MetricInterpolation::LinearSizes);
+            let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts).unwrap();
+            (mesh, rep)
+        })
+    };
+    let (m1, r1) = run(1);
+    let (m2, r2) = run(2);
+    println!(
+        "{} vertices, {} flips, {} moves",
+        m1.n_points(),
+        r1.flips,
+        r1.moves
+    );
+    assert!(
+        m1.n_points() > 5000,
+        "{} vertices: too small to exercise the parallel paths",
+        m1.n_points()
+    );
+    assert_eq!(
+        (r1.splits, r1.collapses, r1.flips, r1.moves),
+        (r2.splits, r2.collapses, r2.flips, r2.moves)
+    );
+    assert_eq!(m1.tris, m2.tris);
+    assert!(m1
+        .points
+        .iter()
+        .zip(&m2.points)
+        .all(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()));
+}
