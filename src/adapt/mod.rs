@@ -42,7 +42,9 @@ mod report;
 mod shape;
 pub mod sources;
 
-pub use driver::{adapt, validate_inputs, AdaptOptions, AdaptReport, PassKind, PassReport};
+pub use driver::{
+    adapt, validate_inputs, AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport,
+};
 pub use report::{mesh_report, MeshReport};
 pub use shape::{adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};

@@ -163,6 +163,13 @@ impl<'a> Ctx<'a> {
         self.gen = self.gen.saturating_add(1);
     }
 
+    /// Makes the next smoothing pass examine only the vertices whose ball changes after this
+    /// call (by default a pass also re-examines the neighbours of the previous pass's moves).
+    pub(crate) fn smoothing_settled(&mut self) {
+        self.new_pass();
+        self.last_smooth = self.gen;
+    }
+
     #[inline]
     pub(crate) fn p(&self, v: u32) -> DVec2 {
         self.mesh.points[v as usize]

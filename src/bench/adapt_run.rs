@@ -8,7 +8,8 @@
 
 use crate::adapt::{
     adapt, adapt_to_shape, mesh_report, AdaptOptions, AdaptReport, AnalyticLevelSetSource,
-    HessianMetric, LevelSetMetric, MeshReport, MetricInterpolation, ShapeAdaptOptions,
+    CycleSmoothing, HessianMetric, LevelSetMetric, MeshReport, MetricInterpolation,
+    ShapeAdaptOptions,
 };
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
@@ -21,10 +22,13 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 
 /// The adaptation options of "conform to this metric" (`anisomesh adapt --input M --sol S` with a
-/// tensor field): the defaults with sizes interpolated linearly between the given vertices, as
-/// mmg2d does with the same files.
+/// tensor field): sizes interpolated linearly between the given vertices, as mmg2d does with the
+/// same files, and one smoothing sweep per cycle over what the cycle changed
+/// ([`CycleSmoothing::Touched`]: these inputs are typically large).
 pub fn metric_file_options() -> AdaptOptions {
-    AdaptOptions::default().interpolation(MetricInterpolation::LinearSizes)
+    AdaptOptions::default()
+        .interpolation(MetricInterpolation::LinearSizes)
+        .cycle_smoothing(CycleSmoothing::Touched)
 }
 
 /// What to adapt to.
