@@ -64,6 +64,24 @@ fn main() -> anisomesh::Result<()> {
             q.q_ani_max
         );
         println!("    cycles {} converged {}", rep.cycles, rep.converged);
+        if std::env::var_os("ANISOMESH_PASSES").is_some() {
+            for p in &rep.passes {
+                println!("      {:?} {} {:.3}", p.kind, p.count, p.seconds);
+            }
+            // A fingerprint of the result: equal runs print equal numbers.
+            let mut h: u64 = 0xcbf29ce484222325;
+            for p in &mesh.points {
+                for x in [p.x.to_bits(), p.y.to_bits()] {
+                    h = (h ^ x).wrapping_mul(0x100000001b3);
+                }
+            }
+            for t in &mesh.tris {
+                for &v in t {
+                    h = (h ^ u64::from(v)).wrapping_mul(0x100000001b3);
+                }
+            }
+            println!("    fingerprint {h:016x}");
+        }
         for kind in [
             PassKind::Split,
             PassKind::Collapse,

@@ -356,3 +356,110 @@ fn metric_interpolation_rules_on_a_coarse_background() {
         counts[0]
     );
 }
+
+/// The Delaunay insertion kernel gives the new vertex the metric of the chosen interpolation
+/// rule (as plain splits do): linear sizes between the edge ends, or the log-Euclidean mean.
+#[test]
+fn insertion_kernel_interpolates_the_metric_by_the_chosen_rule() {
+    use anisomesh::adapt::MetricInterpolation;
+    use anisomesh::metric::{interpolate_log, lerp_sizes};
+    for rule in [
+        MetricInterpolation::LogEuclidean,
+        MetricInterpolation::LinearSizes,
+    ] {
+        let mut mesh = square(4);
+        let mut metric: Vec<Sym2> = mesh
+            .points
+            .iter()
+            .map(|p| aniso(0.01 + 0.2 * p.x, 0.05 + 0.1 * p.y))
+            .collect();
+        let mut p = params();
+        p.insertion = true;
+        p.interpolation = rule;
+        let ctx = Ctx::new(&mut mesh, &mut metric, &mut [], None, p);
+        let mut ctx = ctx;
+        let mut checked = 0;
+        for t in 0..ctx.mesh.n_tris() {
+            for i in 0..3 {
+                let Some(sp) = split::check(&ctx, t as u32, i) else {
+                    continue;
+                };
+                let Some(ip) = insert::check(&mut ctx, &sp) else {
+                    continue;
+                };
+                let [a, b] = ip.ends;
+                let (ma, mb) = (ctx.metric[a as usize], ctx.metric[b as usize]);
+                let want = match rule {
+                    MetricInterpolation::LinearSizes => lerp_sizes(&ma, &mb, ip.s),
+                    MetricInterpolation::LogEuclidean => {
+                        interpolate_log(&[(1.0 - ip.s, ma), (ip.s, mb)])
+                    }
+                };
+                let d = (ip.m.xx - want.xx).abs()
+                    + (ip.m.xy - want.xy).abs()
+                    + (ip.m.yy - want.yy).abs();
+                assert!(
+                    d <= 1e-9 * want.xx.abs().max(want.yy.abs()),
+                    "{rule:?}: {ip:?} vs {want:?}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 10, "{rule:?}: {checked} insertions checked");
+    }
+}
+
+/// The passes evaluate their checks in parallel when there are several threads and enough work,
+/// but use a result only where the sequential check would see the same state: the adapted mesh
+/// is bit-identical for 1 and 2 threads (a case large enough for the parallel paths).
+#[test]
+fn adaptation_is_identical_for_one_and_two_threads() {
+    use anisomesh::adapt::{adapt, MetricInterpolation};
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut mesh = square(30);
+            // Fine and stretched along the circle of radius 0.3 about the centre.
+            let mut metric: Vec<Sym2> = mesh
+                .points
+                .iter()
+                .map(|p| {
+                    let d = *p - DVec2::splat(0.5);
+                    let r = d.length();
+                    let h_n = 0.0005 + 0.1 * (r - 0.3).abs();
+                    let n = d.try_normalize().unwrap_or(DVec2::X);
+                    Sym2::from_eigen([1.0 / (h_n * h_n), 1.0 / 0.01f64.powi(2)], [n, n.perp()])
+                })
+                .collect();
+            let opts = AdaptOptions::default().interpolation(MetricInterpolation::LinearSizes);
+            let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts).unwrap();
+            (mesh, rep)
+        })
+    };
+    let (m1, r1) = run(1);
+    let (m2, r2) = run(2);
+    println!(
+        "{} vertices, {} flips, {} moves",
+        m1.n_points(),
+        r1.flips,
+        r1.moves
+    );
+    assert!(
+        m1.n_points() > 5000,
+        "{} vertices: too small to exercise the parallel paths",
+        m1.n_points()
+    );
+    assert_eq!(
+        (r1.splits, r1.collapses, r1.flips, r1.moves),
+        (r2.splits, r2.collapses, r2.flips, r2.moves)
+    );
+    assert_eq!(m1.tris, m2.tris);
+    assert!(m1
+        .points
+        .iter()
+        .zip(&m2.points)
+        .all(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()));
+}

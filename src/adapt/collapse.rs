@@ -8,8 +8,9 @@
 //! invert (exact `orient2d`); a new edge would be longer than `l_max`; or the worst `Q_ani` of the
 //! ball would exceed the floor and be worse than before.
 
-use super::topo::{local, Ctx, VClass};
+use super::topo::{local, parallel_worth, Ctx, VClass};
 use crate::mesh::{next, prev, NONE};
+use rayon::prelude::*;
 
 /// A planned collapse of vertex `a` onto its neighbour `b`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -217,19 +218,34 @@ pub fn pass(ctx: &mut Ctx) -> usize {
     ctx.last_collapse = ctx.gen;
     let nv = ctx.mesh.n_points();
     let l_min = ctx.params.l_min;
+    let gen = ctx.gen;
+    let candidate = |ctx: &Ctx, au: usize| {
+        ctx.mesh.vert_tri[au] != NONE
+            && !ctx.mesh.corner[au]
+            && !ctx.mesh.required[au]
+            && ctx.vmod[au] >= since
+    };
+    // With several threads, which vertices have a short edge is first found in parallel; the
+    // pass trusts a "no short edge" answer only while the vertex's ball is unchanged (`vmod`),
+    // so the collapses are the same for any number of threads.
+    let pre: Option<Vec<bool>> = parallel_worth(nv).then(|| {
+        let c: &Ctx = ctx;
+        (0..nv)
+            .into_par_iter()
+            .map(|au| candidate(c, au) && has_short_edge(c, au as u32, l_min))
+            .collect()
+    });
     let mut count = 0;
     let mut short: Vec<(f64, u32)> = Vec::with_capacity(16);
     for a in 0..nv as u32 {
-        if ctx.mesh.vert_tri[a as usize] == NONE || ctx.vstamp[a as usize] == ctx.gen {
-            continue;
-        }
         let au = a as usize;
-        if ctx.mesh.corner[au] || ctx.mesh.required[au] {
+        if ctx.vstamp[au] == gen || !candidate(ctx, au) {
             continue;
         }
-        // Only vertices whose ball changed since the last collapse pass.
-        if ctx.vmod[au] < since {
-            continue;
+        if let Some(pre) = &pre {
+            if !pre[au] && ctx.vmod[au] != gen {
+                continue;
+            }
         }
         ctx.load_fan(a);
         short.clear();
@@ -261,11 +277,22 @@ pub fn pass(ctx: &mut Ctx) -> usize {
         for &(_, b) in short.iter() {
             if let Some(plan) = check_loaded(ctx, a, b) {
                 apply(ctx, &plan);
-                ctx.vstamp[b as usize] = ctx.gen;
+                ctx.vstamp[b as usize] = gen;
                 count += 1;
                 break;
             }
         }
     }
     count
+}
+
+/// Whether vertex `a` has an edge shorter than `l_min` (every edge of its ball that holds it).
+fn has_short_edge(ctx: &Ctx, a: u32, l_min: f64) -> bool {
+    let mut short = false;
+    ctx.mesh.for_each_fan_triangle(a, |t| {
+        let tri = ctx.mesh.tris[t as usize];
+        let ia = local(tri, a);
+        short = short || ctx.len(a, tri[next(ia)]) < l_min || ctx.len(a, tri[prev(ia)]) < l_min;
+    });
+    short
 }

@@ -3,9 +3,10 @@
 //! edges are never flipped, so curves and sub-domain labels are preserved; the area is preserved
 //! exactly (same quadrilateral).
 
-use super::topo::Ctx;
+use super::topo::{parallel_worth, Ctx};
 use crate::geom::orient2d;
 use crate::mesh::{next, prev, NONE};
+use rayon::prelude::*;
 
 /// Relative improvement of the worse quality a flip must bring (avoids cycling).
 const GAIN: f64 = 0.99;
@@ -31,17 +32,19 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
     let (c, a, b) = (tri[i], tri[next(i)], tri[prev(i)]);
     let j = mesh.mirror_edge(tu, t2u)?;
     let d = mesh.tris[t2u][j];
-    let (pa, pb, pc, pd) = (ctx.p(a), ctx.p(b), ctx.p(c), ctx.p(d));
-    if orient2d(pc, pa, pd) <= 0.0 || orient2d(pc, pd, pb) <= 0.0 {
-        return None;
-    }
     let q_old = ctx.q_tri(t).max(ctx.q_tri(t2));
     // Q_ani >= 1: no flip can bring the worse quality below GAIN * q_old when q_old <= 1/GAIN.
     if q_old * GAIN <= 1.0 {
         return None;
     }
+    // A non-convex quadrilateral gives a triangle of non-positive area, whose Q_ani is +inf:
+    // the quality test rejects it first; the exact orientation tests confirm an acceptance.
     let q_new = ctx.q([c, a, d]).max(ctx.q([d, b, c]));
-    (q_new < GAIN * q_old).then_some(FlipPlan { t, i: i as u8 })
+    if q_new >= GAIN * q_old {
+        return None;
+    }
+    let (pa, pb, pc, pd) = (ctx.p(a), ctx.p(b), ctx.p(c), ctx.p(d));
+    (orient2d(pc, pa, pd) > 0.0 && orient2d(pc, pd, pb) > 0.0).then_some(FlipPlan { t, i: i as u8 })
 }
 
 /// Applies a flip: `(c, a, b) + (d, b, a)` becomes `(c, a, d) + (d, b, c)`.
@@ -86,18 +89,53 @@ pub fn apply(ctx: &mut Ctx, plan: &FlipPlan) {
     ctx.touch(t2);
 }
 
-/// One flip sweep over the interior edges next to triangles modified since the last sweep. Returns the number of flips.
+/// One flip sweep over the interior edges next to triangles modified since the last sweep, in
+/// triangle order, each accepted flip applied at once. With several threads the checks are
+/// first evaluated in parallel on the state at the start of the sweep; the sweep then uses such
+/// a result only while neither triangle of the edge has changed, so the flips are the same for
+/// any number of threads. Returns the number of flips.
 pub fn pass(ctx: &mut Ctx) -> usize {
     ctx.new_pass();
     let from = ctx.flip_pos;
     ctx.flip_pos = ctx.log.len();
+    let list = ctx.logged_since(from);
+    let gen = ctx.gen;
+    // An edge shared with a listed triangle of lower index is checked from there first.
+    let checked_before = |ctx: &Ctx, t: u32, nb: u32| nb < t && ctx.tseen[nb as usize] == gen;
+    let pre: Option<Vec<u8>> = parallel_worth(list.len()).then(|| {
+        let c: &Ctx = ctx;
+        list.par_iter()
+            .map(|&t| {
+                let mut mask = 0u8;
+                for i in 0..3 {
+                    let nb = c.mesh.neighbours[t as usize][i];
+                    if nb != NONE && !checked_before(c, t, nb) && check(c, t, i).is_some() {
+                        mask |= 1 << i;
+                    }
+                }
+                mask
+            })
+            .collect()
+    });
     let mut count = 0;
-    for t in ctx.logged_since(from) {
+    for (k, &t) in list.iter().enumerate() {
         for i in 0..3 {
-            if ctx.mesh.neighbours[t as usize][i] == NONE {
+            let nb = ctx.mesh.neighbours[t as usize][i];
+            if nb == NONE {
                 continue;
             }
-            if let Some(plan) = check(ctx, t, i) {
+            let unchanged = ctx.tstamp[t as usize] != gen && ctx.tstamp[nb as usize] != gen;
+            // Already checked from `nb` and neither triangle has changed since: same answer.
+            if unchanged && checked_before(ctx, t, nb) {
+                continue;
+            }
+            let plan = match &pre {
+                Some(pre) if unchanged => {
+                    (pre[k] >> i & 1 == 1).then_some(FlipPlan { t, i: i as u8 })
+                }
+                _ => check(ctx, t, i),
+            };
+            if let Some(plan) = plan {
                 apply(ctx, &plan);
                 count += 1;
             }

@@ -53,7 +53,7 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
     let (a, b) = (tri[next(i)], tri[prev(i)]);
     let m = match ctx.source.and_then(|s| s.metric_at(split.p)) {
         Some(m) => m,
-        None => super::kernel::interpolate(&[(1.0 - split.s, ctx.m(a)), (split.s, ctx.m(b))]),
+        None => ctx.interpolate_metric(&[a, b], &[1.0 - split.s, split.s]),
     };
     let p = split.p;
     let pm = to_metric_space(&m, p);

@@ -14,6 +14,9 @@ use crate::geom::{barycentric, orient2d, DVec2};
 use crate::mesh::{next, prev, NONE};
 use crate::metric::Sym2;
 
+/// Relative improvement of the worst fan quality a move must bring.
+const GAIN: f64 = 0.999;
+
 /// A planned move of vertex `v` to `p`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MovePlan {
@@ -32,7 +35,12 @@ pub fn ideal_apex(a: DVec2, b: DVec2, m: &Sym2) -> DVec2 {
 
 /// Pure check for a free vertex `v` (fan loaded in `ctx.fan`).
 pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
-    if ctx.vclass(v) != VClass::Free || ctx.fan.len() < 3 {
+    check_fan(ctx, v, &ctx.fan)
+}
+
+/// Pure check for a free vertex `v` whose counter-clockwise fan is `fan`.
+pub fn check_fan(ctx: &Ctx, v: u32, fan: &[u32]) -> Option<MovePlan> {
+    if fan.len() < 3 || ctx.vclass_in(v, fan) != VClass::Free {
         return None;
     }
     let mesh = &*ctx.mesh;
@@ -41,7 +49,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
     let lv = if ctx.fast_q { mv } else { ctx.logm[v as usize] };
     let mut target = DVec2::ZERO;
     let mut q_old: f64 = 1.0;
-    for &t in &ctx.fan {
+    for &t in fan {
         let tri = mesh.tris[t as usize];
         let iv = local(tri, v);
         let (a, b) = (tri[next(iv)], tri[prev(iv)]);
@@ -54,8 +62,9 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
         target += ideal_apex(ctx.p(a), ctx.p(b), &m);
         q_old = q_old.max(ctx.q_tri(t));
     }
-    target /= ctx.fan.len() as f64;
-    if !target.is_finite() {
+    target /= fan.len() as f64;
+    // Q_ani >= 1: nothing can improve a fan whose worst quality is within the gain of 1.
+    if !target.is_finite() || q_old * GAIN <= 1.0 {
         return None;
     }
     for omega in [1.0, 0.5, 0.25] {
@@ -65,7 +74,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
         }
         let mut ok = true;
         let mut q_new: f64 = 1.0;
-        for &t in &ctx.fan {
+        for &t in fan {
             let tri = mesh.tris[t as usize];
             let iv = local(tri, v);
             let (a, b) = (tri[next(iv)], tri[prev(iv)]);
@@ -79,7 +88,7 @@ pub fn check_loaded(ctx: &Ctx, v: u32) -> Option<MovePlan> {
                 break;
             }
         }
-        if ok && q_new < 0.999 * q_old {
+        if ok && q_new < GAIN * q_old {
             return Some(MovePlan { v, p });
         }
     }
@@ -117,18 +126,17 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     }
 }
 
-/// One smoothing sweep over the free vertices whose ball changed since the last sweep. Returns the number of moves.
+/// One smoothing sweep, in vertex order, over the free vertices whose ball changed since the
+/// last sweep; each accepted move is applied at once (Gauss-Seidel: a vertex sees the moves of
+/// the vertices before it). Returns the number of moves.
 pub fn pass(ctx: &mut Ctx) -> usize {
     let since = ctx.last_smooth;
     ctx.new_pass();
     ctx.last_smooth = ctx.gen;
     let mut count = 0;
     for v in 0..ctx.mesh.n_points() as u32 {
-        if ctx.mesh.vert_tri[v as usize] == NONE {
-            continue;
-        }
         // Only vertices whose ball changed since the last smoothing pass.
-        if ctx.vmod[v as usize] < since {
+        if ctx.mesh.vert_tri[v as usize] == NONE || ctx.vmod[v as usize] < since {
             continue;
         }
         ctx.load_fan(v);

@@ -3,9 +3,10 @@
 //! four (two). The new vertex lies on the segment, so boundary and interface curves stay where
 //! they are and areas are preserved; it inherits the edge label as its vertex label.
 
-use super::topo::Ctx;
+use super::topo::{parallel_worth, Ctx};
 use crate::geom::{orient2d, DVec2};
 use crate::mesh::{next, prev, NONE};
+use rayon::prelude::*;
 
 /// A planned split of local edge `i` of triangle `t` at parameter `s` from its first vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -160,18 +161,38 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<u64>) -> usize {
     ctx.split_pos = ctx.log.len();
     cand.clear();
     let l_max = ctx.params.l_max;
-    // Only edges of triangles modified since the last split pass (an edge shared by two logged
-    // triangles is listed twice; the second is skipped below once the first split stamps it).
-    for t in ctx.logged_since(from) {
-        let tri = ctx.mesh.tris[t as usize];
+    // Only edges of triangles modified since the last split pass. An edge shared with a listed
+    // triangle of lower index is measured from there (same length class, and that key sorts
+    // first). The keys are unique, so the order does not depend on how they were collected.
+    let list = ctx.logged_since(from);
+    let gen = ctx.gen;
+    let keys = |c: &Ctx, t: u32, out: &mut dyn FnMut(u64)| {
+        let tri = c.mesh.tris[t as usize];
         for i in 0..3 {
-            let l = ctx.len(tri[next(i)], tri[prev(i)]);
+            let nb = c.mesh.neighbours[t as usize][i];
+            if nb < t && c.tseen[nb as usize] == gen {
+                continue;
+            }
+            let l = c.len(tri[next(i)], tri[prev(i)]);
             if l > l_max {
-                cand.push(split_key(l, t, i));
+                out(split_key(l, t, i));
             }
         }
+    };
+    if parallel_worth(list.len()) {
+        let c: &Ctx = ctx;
+        cand.par_extend(list.par_iter().flat_map_iter(|&t| {
+            let mut v = Vec::new();
+            keys(c, t, &mut |k| v.push(k));
+            v
+        }));
+        cand.par_sort_unstable();
+    } else {
+        for &t in &list {
+            keys(ctx, t, &mut |k| cand.push(k));
+        }
+        cand.sort_unstable();
     }
-    cand.sort_unstable();
     let mut count = 0;
     for &key in cand.iter() {
         let (t, i) = ((key >> 2) as u32, (key & 3) as u8);

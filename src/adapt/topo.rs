@@ -7,6 +7,22 @@ use super::sources::MetricSource;
 use crate::geom::DVec2;
 use crate::mesh::{next, prev, Mesh2, NONE};
 use crate::metric::Sym2;
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+
+/// `tq` entry of a triangle whose quality is not known.
+const Q_UNKNOWN: u64 = 0x7ff8_0000_0000_0000; // f64::NAN
+
+fn unknown_qualities(n: usize) -> Vec<AtomicU64> {
+    (0..n).map(|_| AtomicU64::new(Q_UNKNOWN)).collect()
+}
+
+/// Whether a pass over `n` candidates should evaluate its checks in parallel first: with more
+/// than one rayon thread and enough work. The passes use the parallel results only where the
+/// sequential check would see the same state, so the outcome does not depend on this choice.
+#[inline]
+pub(crate) fn parallel_worth(n: usize) -> bool {
+    n >= 4096 && rayon::current_num_threads() > 1
+}
 
 /// Parameters the operators read (copied from [`super::AdaptOptions`]).
 #[derive(Debug, Clone, Copy)]
@@ -74,9 +90,10 @@ pub struct Ctx<'a> {
     pub(crate) flip_pos: usize,
     /// Per-triangle visit mark of the current pass (deduplicates log entries).
     pub(crate) tseen: Vec<u32>,
-    /// Cached `Q_ani` per triangle (NaN: not known; `touch` forgets it). Most operator checks
-    /// compare against the current quality of unchanged triangles.
-    pub(crate) tq: Vec<std::cell::Cell<f64>>,
+    /// Cached `Q_ani` per triangle as `f64` bits (NaN: not known; `touch` forgets it). Most
+    /// operator checks compare against the current quality of unchanged triangles. Atomic so
+    /// that parallel checks may fill it (every writer stores the same value).
+    pub(crate) tq: Vec<AtomicU64>,
     pub(crate) gen: u32,
     /// Logarithms of the vertex metrics (element metrics are `exp` of their mean).
     pub(crate) logm: Vec<Sym2>,
@@ -119,7 +136,7 @@ impl<'a> Ctx<'a> {
             split_pos: 0,
             flip_pos: 0,
             tseen: vec![0; nt],
-            tq: vec![std::cell::Cell::new(f64::NAN); nt],
+            tq: unknown_qualities(nt),
             gen: 1,
             logm,
             last_smooth: 0,
@@ -176,12 +193,12 @@ impl<'a> Ctx<'a> {
     #[inline]
     pub(crate) fn q_tri(&self, t: u32) -> f64 {
         let c = &self.tq[t as usize];
-        let q = c.get();
+        let q = f64::from_bits(c.load(Relaxed));
         if !q.is_nan() {
             return q;
         }
         let q = self.q(self.mesh.tris[t as usize]);
-        c.set(q);
+        c.store(q.to_bits(), Relaxed);
         q
     }
 
@@ -207,6 +224,11 @@ impl<'a> Ctx<'a> {
 
     /// The class of `v` (its fan must be loaded in `self.fan`).
     pub(crate) fn vclass(&self, v: u32) -> VClass {
+        self.vclass_in(v, &self.fan)
+    }
+
+    /// The class of `v` whose fan is `fan`.
+    pub(crate) fn vclass_in(&self, v: u32, fan: &[u32]) -> VClass {
         let vu = v as usize;
         if self.mesh.corner[vu] || self.mesh.required[vu] {
             return VClass::Fixed;
@@ -214,7 +236,7 @@ impl<'a> Ctx<'a> {
         let mut n = 0;
         let mut ends = [NONE; 2];
         let mut labels = [0i32; 2];
-        for &t in &self.fan {
+        for &t in fan {
             let t = t as usize;
             let tri = self.mesh.tris[t];
             let i = local(tri, v);
@@ -271,7 +293,7 @@ impl<'a> Ctx<'a> {
             self.log.push(t);
         }
         self.tstamp[tu] = self.gen;
-        self.tq[tu].set(f64::NAN);
+        *self.tq[tu].get_mut() = Q_UNKNOWN;
         for v in self.mesh.tris[tu] {
             if v != NONE {
                 self.vmod[v as usize] = self.gen;
@@ -297,7 +319,7 @@ impl<'a> Ctx<'a> {
         self.vmod = scatter(&self.vmod, &vmap, nv, 0);
         self.tstamp = scatter(&self.tstamp, &tmap, nt, 0);
         self.tseen = vec![0; nt];
-        self.tq = vec![std::cell::Cell::new(f64::NAN); nt];
+        self.tq = unknown_qualities(nt);
         // Keep the log entries some pass has not consumed yet, renumbered.
         let lo = self.split_pos.min(self.flip_pos);
         let mut kept = Vec::with_capacity(self.log.len() - lo);
@@ -353,7 +375,7 @@ impl<'a> Ctx<'a> {
         self.mesh.tri_ref.push(tref);
         self.tstamp.push(self.gen);
         self.tseen.push(0);
-        self.tq.push(std::cell::Cell::new(f64::NAN));
+        self.tq.push(AtomicU64::new(Q_UNKNOWN));
         self.log.push(t);
         for v in tri {
             self.vmod[v as usize] = self.gen;
@@ -389,30 +411,33 @@ impl<'a> Ctx<'a> {
         }
         match m {
             Some(m) => m,
-            None if self.params.interpolation == MetricInterpolation::LinearSizes => {
-                let m = |k: usize| &self.metric[verts[k] as usize];
-                match verts.len() {
-                    0 => Sym2::IDENTITY,
-                    1 => *m(0),
-                    n => {
-                        // Barycentric weights applied pairwise: ((v0, v1), v2).
-                        let (w0, w1) = (weights[0], weights[1]);
-                        let s01 = if w0 + w1 > 0.0 { w1 / (w0 + w1) } else { 0.5 };
-                        let m01 = crate::metric::lerp_sizes(m(0), m(1), s01);
-                        if n == 2 {
-                            m01
-                        } else {
-                            crate::metric::lerp_sizes(&m01, m(2), weights[2])
-                        }
-                    }
+            None => self.interpolate_metric(verts, weights),
+        }
+    }
+
+    /// The metric interpolated with `weights` over `verts` (at most three) by the rule of
+    /// `params.interpolation`: log-Euclidean, or linear sizes applied pairwise `((v0, v1), v2)`.
+    pub(crate) fn interpolate_metric(&self, verts: &[u32], weights: &[f64]) -> Sym2 {
+        let m = |k: usize| &self.metric[verts[k] as usize];
+        match (self.params.interpolation, verts.len()) {
+            (_, 0) => Sym2::IDENTITY,
+            (_, 1) => *m(0),
+            (MetricInterpolation::LinearSizes, n) => {
+                let (w0, w1) = (weights[0], weights[1]);
+                let s01 = if w0 + w1 > 0.0 { w1 / (w0 + w1) } else { 0.5 };
+                let m01 = crate::metric::lerp_sizes(m(0), m(1), s01);
+                if n == 2 {
+                    m01
+                } else {
+                    crate::metric::lerp_sizes(&m01, m(2), weights[2])
                 }
             }
-            None => {
+            (MetricInterpolation::LogEuclidean, n) => {
                 let mut w: [(f64, &Sym2); 3] = [(0.0, &self.metric[0]); 3];
                 for (k, (&v, &wt)) in verts.iter().zip(weights).take(3).enumerate() {
                     w[k] = (wt, &self.metric[v as usize]);
                 }
-                kernel::interpolate(&w[..verts.len().min(3)])
+                kernel::interpolate(&w[..n.min(3)])
             }
         }
     }

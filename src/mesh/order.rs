@@ -4,6 +4,7 @@
 //! cache instead of main memory (on 2·10^6 vertices adaptation ran several times faster).
 
 use super::{Mesh2, NONE};
+use rayon::prelude::*;
 
 /// Side of the Hilbert grid: coordinates are quantised to `2^16` cells per direction.
 const ORDER_BITS: u32 = 16;
@@ -53,9 +54,10 @@ impl Mesh2 {
         } else {
             0.0
         };
+        // Keys are unique (they hold the index), so the parallel sort is deterministic.
         let mut keys: Vec<(u64, u32)> = self
             .points
-            .iter()
+            .par_iter()
             .zip(&used)
             .enumerate()
             .filter(|(_, (_, &u))| u)
@@ -64,20 +66,21 @@ impl Mesh2 {
                 (hilbert_index(q.x as u32, q.y as u32), v as u32)
             })
             .collect();
-        keys.sort_unstable();
+        keys.par_sort_unstable();
         let vorder: Vec<u32> = keys.iter().map(|&(_, v)| v).collect();
         let mut vmap = vec![NONE; self.points.len()];
         for (new, &old) in vorder.iter().enumerate() {
             vmap[old as usize] = new as u32;
         }
-        let mut tkeys: Vec<u64> = self
-            .live_tris()
+        let mut tkeys: Vec<u64> = (0..self.tris.len())
+            .into_par_iter()
+            .filter(|&t| !self.is_deleted(t))
             .map(|t| {
                 let lowest = self.tris[t].iter().map(|&v| vmap[v as usize]).min();
                 (u64::from(lowest.unwrap_or(NONE)) << 32) | t as u64
             })
             .collect();
-        tkeys.sort_unstable();
+        tkeys.par_sort_unstable();
         let torder: Vec<u32> = tkeys.iter().map(|&k| k as u32).collect();
         self.renumber(&vorder, &torder)
     }
