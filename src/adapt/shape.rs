@@ -2,11 +2,11 @@
 //! level set (signed distance), compute the geometric metric of 004 eq. (6), adapt, and repeat
 //! until the vertex count changes by less than `tol` (2% by default) and the mesh conforms to the
 //! metric evaluated at its own vertices (`min_in_range`). Sharp features: a required vertex sits
-//! exactly on every corner of the shape ([`ShapeAdaptOptions::features`], inserted by
-//! [`super::features::insert_point`]).
+//! exactly on every corner of the shape, joined to a required vertex on the kink of the distance
+//! ([`ShapeAdaptOptions::features`], [`super::features::insert_corner_features`]).
 
 use super::driver::{adapt, AdaptOptions, AdaptReport};
-use super::features::insert_point;
+use super::features::insert_corner_features;
 use super::sources::{derivatives_at_scale, AnalyticLevelSetSource, LevelSetMetric, MetricSource};
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
@@ -54,6 +54,13 @@ pub struct ShapeAdaptOptions {
     /// move or collapse required vertices). Without it the P1 zero level cuts each corner by a
     /// fraction of `hmin`.
     pub features: bool,
+    /// With `features`: the length, in units of `hmin`, of a labelled edge laid from each
+    /// corner along the kink of the distance (the medial axis on the convex side,
+    /// [`super::features::kink_point`]); its far end is required too, and the operators keep a
+    /// labelled edge (never flipped; splits stay on it). The fan of the corner then never
+    /// straddles the kink, where the P1 interpolant of the distance is only first-order
+    /// accurate. Default `Some(2.0)`; `None`: corner vertices only.
+    pub kink_edge: Option<f64>,
 }
 
 impl Default for ShapeAdaptOptions {
@@ -68,6 +75,7 @@ impl Default for ShapeAdaptOptions {
             gradation: Some(2.0),
             kink_scale: None,
             features: true,
+            kink_edge: Some(2.0),
         }
     }
 }
@@ -81,7 +89,8 @@ fn derivatives(shape: &dyn Shape, p: DVec2) -> (f64, DVec2, Sym2) {
 /// of the adaptation rounds (`cycles`, operation counts and `seconds` added up; `converged` when
 /// the vertex count settled within `tol` with at least `min_in_range` of the edges of unit
 /// metric length). With `features`, a required vertex sits on each corner of the shape inside
-/// the domain ([`Shape::corners`]).
+/// the domain ([`Shape::corners`]), joined by a labelled edge to a required vertex on the kink
+/// of the distance (`kink_edge`).
 pub fn adapt_to_shape(
     shape: &dyn Shape,
     domain: (DVec2, DVec2),
@@ -96,12 +105,6 @@ pub fn adapt_to_shape(
     let t0 = std::time::Instant::now();
     let n = opts.coarse_cells;
     let mut mesh = Mesh2::rectangle(domain.0, domain.1, n, n, GridPattern::UnionJack)?;
-    let corners = if opts.features {
-        shape.corners()
-    } else {
-        Vec::new()
-    };
-    insert_corners(&mut mesh, &corners, domain)?;
     if !(0.0..=1.0).contains(&opts.min_in_range) {
         return Err(Error::InvalidInput(format!(
             "adapt_to_shape: min_in_range must lie in [0, 1] (got {})",
@@ -113,6 +116,16 @@ pub fn adapt_to_shape(
             "adapt_to_shape: kink_scale must be positive (got {:?})",
             opts.kink_scale
         )));
+    }
+    if opts.kink_edge.is_some_and(|k| !(k > 0.0 && k.is_finite())) {
+        return Err(Error::InvalidInput(format!(
+            "adapt_to_shape: kink_edge must be positive (got {:?})",
+            opts.kink_edge
+        )));
+    }
+    if opts.features {
+        let kink_length = opts.kink_edge.map(|k| k * opts.metric.hmin);
+        insert_corner_features(&mut mesh, shape, domain, kink_length)?;
     }
     let delta = opts.kink_scale.map(|k| k * opts.metric.hmin);
     let f = |p: DVec2| match delta {
@@ -162,18 +175,6 @@ pub fn adapt_to_shape(
     }
     total.seconds = t0.elapsed().as_secs_f64();
     Ok((mesh, u, total))
-}
-
-/// Inserts a required vertex at each of `corners` that lies in the closed rectangle `domain`
-/// (others are skipped).
-fn insert_corners(mesh: &mut Mesh2, corners: &[DVec2], domain: (DVec2, DVec2)) -> Result<()> {
-    for &c in corners {
-        if c.cmpge(domain.0).all() && c.cmple(domain.1).all() {
-            let v = insert_point(mesh, c)?.vertex();
-            mesh.required[v as usize] = true;
-        }
-    }
-    Ok(())
 }
 
 /// A source that evaluates the fields exactly but lets the metric be interpolated.

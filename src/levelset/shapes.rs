@@ -254,11 +254,11 @@ impl Shape for Zalesak {
     fn distance(&self, p: DVec2) -> f64 {
         self.sign(p) * self.curve.closest(p).dist
     }
-    /// `s (p - q) / |p - q|` for the closest boundary point `q`; on the boundary, the outward
-    /// normal of the closest piece.
+    /// `s (p - q) / |p - q|` for the closest boundary point `q`; on the boundary (within
+    /// round-off of it, where `p - q` is noise), the outward normal of the closest piece.
     fn gradient(&self, p: DVec2) -> DVec2 {
         let c = self.curve.closest(p);
-        if c.dist > 0.0 {
+        if c.dist > 64.0 * f64::EPSILON * p.abs().max_element().max(1.0) {
             self.sign(p) * (p - c.point) / c.dist
         } else {
             c.normal
