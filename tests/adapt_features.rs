@@ -312,3 +312,43 @@ fn corners_outside_the_domain_are_skipped() {
     assert!(has(c[1]) && has(c[2]));
     assert!(!has(c[0]) && !has(c[3]));
 }
+
+/// A rotated disk (corners and kinks off the axes): every corner a required vertex with a kink
+/// edge, and the interface error at the level of the axis-aligned run.
+#[test]
+fn rotated_zalesak_keeps_exact_corners() {
+    let shape = Rotated {
+        shape: Box::new(Zalesak::default()),
+        pivot: DVec2::ZERO,
+        angle: 0.7,
+    };
+    let opts = ShapeAdaptOptions::default();
+    let domain = (DVec2::splat(-2.0), DVec2::splat(2.0));
+    let (mesh, u, rep) = adapt_to_shape(&shape, domain, &opts).unwrap();
+    mesh.check().unwrap();
+    assert!(rep.converged);
+    for c in shape.corners() {
+        let v = mesh
+            .points
+            .iter()
+            .position(|&p| p == c)
+            .expect("corner vertex");
+        assert!(mesh.required[v] && u[v].abs() < 1e-15);
+        let kinked = mesh.vertex_fan(v as u32).iter().any(|&t| {
+            (0..3).any(|i| {
+                mesh.edge_ref[t as usize][i] == KINK_LABEL
+                    && mesh.edge_vertices(t as usize, i).contains(&(v as u32))
+            })
+        });
+        assert!(kinked, "no kink edge at {c}");
+    }
+    let src = AnalyticLevelSetSource::new(
+        |p| (shape.distance(p), shape.gradient(p), shape.hessian(p)),
+        opts.metric,
+    );
+    let (mut metric, _) = src.evaluate(&mesh);
+    anisomesh::metric::gradate(&mesh, &mut metric, opts.gradation.unwrap()).unwrap();
+    let r = mesh_report(&mesh, &metric, &u, Some(&shape)).unwrap();
+    eprintln!("rotated: {r:?}");
+    assert!(r.vertices <= 5000 && r.hausdorff.unwrap() <= 6e-5, "{r:?}");
+}
