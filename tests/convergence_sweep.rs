@@ -134,7 +134,9 @@ fn kink_of_the_distance_is_seen_at_scale_hmin() {
 /// The interface error of the anisotropic Zalesak mesh at the paper's setting (ε = 1e-4,
 /// h_min = 1e-3, the default `anisomesh adapt` band, kinks resolved) is attained at the slot
 /// corners, where the P1 zero level cuts the corner by a fraction of h_min; on the straight and
-/// curved parts it stays below ε/2 (the eq. (6) bound, 004 Corollary 1).
+/// curved parts it stays below ε/2 (the eq. (6) bound, 004 Corollary 1). That is without the
+/// corner features (`features: false`); with them (the default) the corners fall to about the
+/// level of the rest (1.1e-5 vs 2.1e-5), see `tests/adapt_features.rs`.
 #[test]
 fn zalesak_hausdorff_is_attained_at_the_corners() {
     let z = shape_by_name("zalesak").unwrap();
@@ -142,6 +144,7 @@ fn zalesak_hausdorff_is_attained_at_the_corners() {
     let opts = ShapeAdaptOptions {
         metric: lm,
         kink_scale: Some(1.0),
+        features: false,
         ..ShapeAdaptOptions::default()
     };
     let domain = (DVec2::splat(-2.0), DVec2::splat(2.0));

@@ -38,6 +38,7 @@ pub mod smooth;
 pub mod split;
 
 mod driver;
+pub mod features;
 mod report;
 mod shape;
 pub mod sources;

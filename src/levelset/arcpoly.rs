@@ -61,6 +61,33 @@ impl Piece {
         }
     }
 
+    /// Unit tangent (direction of traversal) at fraction `s` in `[0, 1]`.
+    pub fn tangent_at(&self, s: f64) -> DVec2 {
+        match *self {
+            Piece::Segment { a, b } => (b - a).normalize_or_zero(),
+            Piece::Arc { start, span, .. } => {
+                let (sn, cs) = (start + s * span).sin_cos();
+                DVec2::new(-sn, cs)
+            }
+        }
+    }
+
+    /// The end point (`s = 1`), exact for a segment.
+    fn end(&self) -> DVec2 {
+        match *self {
+            Piece::Segment { b, .. } => b,
+            Piece::Arc { .. } => self.point_at(1.0),
+        }
+    }
+
+    /// The start point (`s = 0`), exact for a segment.
+    fn start(&self) -> DVec2 {
+        match *self {
+            Piece::Segment { a, .. } => a,
+            Piece::Arc { .. } => self.point_at(0.0),
+        }
+    }
+
     /// Contribution `1/2 ∮ (x dy - y dx)` of the piece to the enclosed area.
     pub fn area_term(&self) -> f64 {
         match *self {
@@ -158,6 +185,26 @@ impl ArcPolygon {
             }
         }
         best
+    }
+
+    /// The junctions of consecutive pieces where the tangent turns (by more than about 1e-9
+    /// rad): the corners of the curve. A junction takes the coordinates of a segment's end point
+    /// when one of the two pieces is a segment (exact input), else the arc's computed end.
+    pub fn corners(&self) -> Vec<DVec2> {
+        let n = self.pieces.len();
+        (0..n)
+            .filter_map(|i| {
+                let (p, q) = (&self.pieces[i], &self.pieces[(i + 1) % n]);
+                let (t0, t1) = (p.tangent_at(1.0), q.tangent_at(0.0));
+                if t0.perp_dot(t1).abs() <= 1e-9 && t0.dot(t1) > 0.0 {
+                    return None;
+                }
+                Some(match (p, q) {
+                    (_, Piece::Segment { .. }) => q.start(),
+                    _ => p.end(),
+                })
+            })
+            .collect()
     }
 
     /// Total length.

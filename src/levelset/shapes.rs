@@ -55,6 +55,14 @@ pub trait Shape: Send + Sync {
         None
     }
 
+    /// The sharp points of the boundary (corners: points where the tangent jumps), exactly on
+    /// the zero level, or empty for a smooth shape (the default). The distance has a kink there
+    /// that a P1 level set cannot follow unless a vertex sits on the corner itself;
+    /// [`crate::adapt::adapt_to_shape`] inserts one at each ([`crate::adapt::ShapeAdaptOptions::features`]).
+    fn corners(&self) -> Vec<DVec2> {
+        Vec::new()
+    }
+
     /// A short human-readable name.
     fn name(&self) -> String;
 }
@@ -77,6 +85,9 @@ impl<S: Shape + ?Sized> Shape for Box<S> {
     }
     fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
         (**self).boundary_samples(n)
+    }
+    fn corners(&self) -> Vec<DVec2> {
+        (**self).corners()
     }
     fn name(&self) -> String {
         (**self).name()
@@ -243,11 +254,11 @@ impl Shape for Zalesak {
     fn distance(&self, p: DVec2) -> f64 {
         self.sign(p) * self.curve.closest(p).dist
     }
-    /// `s (p - q) / |p - q|` for the closest boundary point `q`; on the boundary, the outward
-    /// normal of the closest piece.
+    /// `s (p - q) / |p - q|` for the closest boundary point `q`; on the boundary (within
+    /// round-off of it, where `p - q` is noise), the outward normal of the closest piece.
     fn gradient(&self, p: DVec2) -> DVec2 {
         let c = self.curve.closest(p);
-        if c.dist > 0.0 {
+        if c.dist > 64.0 * f64::EPSILON * p.abs().max_element().max(1.0) {
             self.sign(p) * (p - c.point) / c.dist
         } else {
             c.normal
@@ -284,6 +295,11 @@ impl Shape for Zalesak {
     }
     fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
         Some(self.curve.samples(n))
+    }
+    /// The four slot corners, exactly: `(c.x ∓ w, c.y - sqrt(R² - w²))` where the slot walls
+    /// meet the circle and `(c.x ∓ w, slot_top)` at the slot top (the junctions of the pieces).
+    fn corners(&self) -> Vec<DVec2> {
+        self.curve.corners()
     }
     fn name(&self) -> String {
         "zalesak".into()
@@ -402,6 +418,11 @@ fn filtered(from: &dyn Shape, n: usize, keep: impl Fn(DVec2) -> bool) -> Option<
     )
 }
 
+/// The corners of `from` for which `keep` holds.
+fn corners_where(from: &dyn Shape, keep: impl Fn(DVec2) -> bool) -> Vec<DVec2> {
+    from.corners().into_iter().filter(|&p| keep(p)).collect()
+}
+
 /// Union `A ∪ B`: `min(d_A, d_B)`. A distance bound: exact outside the union; inside, exact
 /// away from the seams where the two boundaries cross, and an underestimate of `|d|` where the
 /// closest point of one boundary lies inside the other shape.
@@ -428,6 +449,13 @@ impl Shape for Union {
         let mut s = filtered(&*self.a, n, |p| self.b.distance(p) >= 0.0)?;
         s.extend(filtered(&*self.b, n, |p| self.a.distance(p) >= 0.0)?);
         Some(s)
+    }
+    /// The operands' corners on the union's boundary; the seams where the two boundaries cross
+    /// are corners too but are not computed.
+    fn corners(&self) -> Vec<DVec2> {
+        let mut c = corners_where(&*self.a, |p| self.b.distance(p) >= 0.0);
+        c.extend(corners_where(&*self.b, |p| self.a.distance(p) >= 0.0));
+        c
     }
     fn name(&self) -> String {
         format!("union({}, {})", self.a.name(), self.b.name())
@@ -458,6 +486,12 @@ impl Shape for Intersection {
         s.extend(filtered(&*self.b, n, |p| self.a.distance(p) <= 0.0)?);
         Some(s)
     }
+    /// The operands' corners on the intersection's boundary (seams not computed).
+    fn corners(&self) -> Vec<DVec2> {
+        let mut c = corners_where(&*self.a, |p| self.b.distance(p) <= 0.0);
+        c.extend(corners_where(&*self.b, |p| self.a.distance(p) <= 0.0));
+        c
+    }
     fn name(&self) -> String {
         format!("intersection({}, {})", self.a.name(), self.b.name())
     }
@@ -486,6 +520,12 @@ impl Shape for Difference {
         let mut s = filtered(&*self.a, n, |p| self.b.distance(p) >= 0.0)?;
         s.extend(filtered(&*self.b, n, |p| self.a.distance(p) <= 0.0)?);
         Some(s)
+    }
+    /// The operands' corners on the difference's boundary (seams not computed).
+    fn corners(&self) -> Vec<DVec2> {
+        let mut c = corners_where(&*self.a, |p| self.b.distance(p) >= 0.0);
+        c.extend(corners_where(&*self.b, |p| self.a.distance(p) <= 0.0));
+        c
     }
     fn name(&self) -> String {
         format!("difference({}, {})", self.a.name(), self.b.name())
@@ -548,6 +588,14 @@ impl Shape for Rotated {
                 .map(|p| self.turn(p, 1.0))
                 .collect(),
         )
+    }
+    /// The inner shape's corners, rotated (on the zero level up to round-off).
+    fn corners(&self) -> Vec<DVec2> {
+        self.shape
+            .corners()
+            .into_iter()
+            .map(|p| self.turn(p, 1.0))
+            .collect()
     }
     fn name(&self) -> String {
         format!("rotated({}, {} rad)", self.shape.name(), self.angle)
