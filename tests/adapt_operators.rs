@@ -463,3 +463,45 @@ fn adaptation_is_identical_for_one_and_two_threads() {
         .zip(&m2.points)
         .all(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()));
 }
+
+/// `CycleSmoothing::Touched` (one sweep per cycle over what the cycle changed) conforms as well
+/// as the relaxing default on a coarse-background metric, with fewer smoothing moves.
+#[test]
+fn touched_cycle_smoothing_conforms_with_fewer_moves() {
+    use anisomesh::adapt::{adapt, CycleSmoothing, MetricInterpolation};
+    let mut out = Vec::new();
+    for mode in [CycleSmoothing::Relaxing, CycleSmoothing::Touched] {
+        let mut mesh = square(12);
+        let mut metric: Vec<Sym2> = mesh
+            .points
+            .iter()
+            .map(|p| {
+                let d = (p.y - 0.3 - 0.4 * p.x * p.x).abs();
+                aniso(0.05, 0.001 + 0.3 * d)
+            })
+            .collect();
+        let opts = AdaptOptions::default()
+            .interpolation(MetricInterpolation::LinearSizes)
+            .cycle_smoothing(mode)
+            .check_each_pass(true);
+        let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts).unwrap();
+        let q = anisomesh::metric::quality_stats(&mesh, &metric);
+        println!(
+            "{mode:?}: {} vertices, {} moves, {:.1}% in range, Q mean {:.3}",
+            mesh.n_points(),
+            rep.moves,
+            100.0 * q.edge_length_in_range,
+            q.q_ani_mean
+        );
+        assert!(rep.converged, "{mode:?}");
+        assert!(q.edge_length_in_range >= 0.95, "{mode:?}: {q:?}");
+        assert!(q.q_ani_mean <= 1.10, "{mode:?}: {q:?}");
+        out.push((rep.moves, mesh.n_points()));
+    }
+    assert!(
+        out[1].0 < out[0].0,
+        "moves: touched {} vs relaxing {}",
+        out[1].0,
+        out[0].0
+    );
+}

@@ -220,10 +220,10 @@ pub fn pass(ctx: &mut Ctx) -> usize {
     let l_min = ctx.params.l_min;
     let gen = ctx.gen;
     let candidate = |ctx: &Ctx, au: usize| {
-        ctx.mesh.vert_tri[au] != NONE
+        ctx.vmod[au] >= since
+            && ctx.mesh.vert_tri[au] != NONE
             && !ctx.mesh.corner[au]
             && !ctx.mesh.required[au]
-            && ctx.vmod[au] >= since
     };
     // With several threads, which vertices have a short edge is first found in parallel; the
     // pass trusts a "no short edge" answer only while the vertex's ball is unchanged (`vmod`),
@@ -255,16 +255,14 @@ pub fn pass(ctx: &mut Ctx) -> usize {
             // Each ring vertex once: the edge leaving a counter-clockwise, plus the last one of
             // an open fan.
             let w = tri[next(ia)];
-            let l = ctx.len(a, w);
-            if l < l_min {
+            if let Some(l) = ctx.len_if_below(a, w, l_min) {
                 short.push((l, w));
             }
             if k + 1 == ctx.fan.len() {
                 let w2 = tri[prev(ia)];
                 let first = ctx.mesh.tris[ctx.fan[0] as usize];
                 if w2 != first[next(local(first, a))] {
-                    let l = ctx.len(a, w2);
-                    if l < l_min {
+                    if let Some(l) = ctx.len_if_below(a, w2, l_min) {
                         short.push((l, w2));
                     }
                 }
@@ -292,7 +290,9 @@ fn has_short_edge(ctx: &Ctx, a: u32, l_min: f64) -> bool {
     ctx.mesh.for_each_fan_triangle(a, |t| {
         let tri = ctx.mesh.tris[t as usize];
         let ia = local(tri, a);
-        short = short || ctx.len(a, tri[next(ia)]) < l_min || ctx.len(a, tri[prev(ia)]) < l_min;
+        short = short
+            || ctx.len_if_below(a, tri[next(ia)], l_min).is_some()
+            || ctx.len_if_below(a, tri[prev(ia)], l_min).is_some();
     });
     short
 }

@@ -39,8 +39,8 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
     }
     // A non-convex quadrilateral gives a triangle of non-positive area, whose Q_ani is +inf:
     // the quality test rejects it first; the exact orientation tests confirm an acceptance.
-    let q_new = ctx.q([c, a, d]).max(ctx.q([d, b, c]));
-    if q_new >= GAIN * q_old {
+    let bound = GAIN * q_old;
+    if ctx.q([c, a, d]) >= bound || ctx.q([d, b, c]) >= bound {
         return None;
     }
     let (pa, pb, pc, pd) = (ctx.p(a), ctx.p(b), ctx.p(c), ctx.p(d));

@@ -67,28 +67,25 @@ pub fn check_fan(ctx: &Ctx, v: u32, fan: &[u32]) -> Option<MovePlan> {
     if !target.is_finite() || q_old * GAIN <= 1.0 {
         return None;
     }
+    // A move is kept when every triangle of the fan improves on `GAIN * q_old`. An inverted
+    // triangle has Q_ani = +inf, so the quality test rejects it first; the exact orientation
+    // tests confirm an acceptance.
+    let bound = GAIN * q_old;
     for omega in [1.0, 0.5, 0.25] {
         let p = pv + omega * (target - pv);
         if p == pv {
             return None;
         }
-        let mut ok = true;
-        let mut q_new: f64 = 1.0;
-        for &t in fan {
-            let tri = mesh.tris[t as usize];
-            let iv = local(tri, v);
-            let (a, b) = (tri[next(iv)], tri[prev(iv)]);
-            if orient2d(p, ctx.p(a), ctx.p(b)) <= 0.0 {
-                ok = false;
-                break;
-            }
-            q_new = q_new.max(ctx.q_moved(tri, v, p, &mv, &lv));
-            if q_new >= q_old {
-                ok = false;
-                break;
-            }
-        }
-        if ok && q_new < GAIN * q_old {
+        let improves = fan
+            .iter()
+            .all(|&t| ctx.q_moved(mesh.tris[t as usize], v, p, &mv, &lv) < bound);
+        let valid = improves
+            && fan.iter().all(|&t| {
+                let tri = mesh.tris[t as usize];
+                let iv = local(tri, v);
+                orient2d(p, ctx.p(tri[next(iv)]), ctx.p(tri[prev(iv)])) > 0.0
+            });
+        if valid {
             return Some(MovePlan { v, p });
         }
     }

@@ -173,8 +173,7 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<u64>) -> usize {
             if nb < t && c.tseen[nb as usize] == gen {
                 continue;
             }
-            let l = c.len(tri[next(i)], tri[prev(i)]);
-            if l > l_max {
+            if let Some(l) = c.len_if_above(tri[next(i)], tri[prev(i)], l_max) {
                 out(split_key(l, t, i));
             }
         }

@@ -186,6 +186,32 @@ impl<'a> Ctx<'a> {
         kernel::edge_length(self.p(a), self.p(b), self.m(a), self.m(b))
     }
 
+    /// The metric length of `(a, b)` if it exceeds `l`, else `None`. The length is the
+    /// logarithmic mean of the end lengths, which lies between their geometric and arithmetic
+    /// means: most edges are decided by those bounds without the logarithm.
+    #[inline]
+    pub(crate) fn len_if_above(&self, a: u32, b: u32, l: f64) -> Option<f64> {
+        let e = self.p(b) - self.p(a);
+        let (la, lb) = (self.m(a).quad(e).sqrt(), self.m(b).quad(e).sqrt());
+        if 0.5 * (la + lb) < l * (1.0 - 1e-12) {
+            return None;
+        }
+        let len = crate::metric::length::geometric_mean_length(la, lb);
+        (len > l).then_some(len)
+    }
+
+    /// The metric length of `(a, b)` if it is below `l`, else `None` (see [`Ctx::len_if_above`]).
+    #[inline]
+    pub(crate) fn len_if_below(&self, a: u32, b: u32, l: f64) -> Option<f64> {
+        let e = self.p(b) - self.p(a);
+        let (la, lb) = (self.m(a).quad(e).sqrt(), self.m(b).quad(e).sqrt());
+        if (la * lb).sqrt() > l * (1.0 + 1e-12) {
+            return None;
+        }
+        let len = crate::metric::length::geometric_mean_length(la, lb);
+        (len < l).then_some(len)
+    }
+
     /// `Q_ani` of the triangle `(a, b, c)` at its current positions.
     #[inline]
     pub(crate) fn q(&self, tri: [u32; 3]) -> f64 {
