@@ -8,8 +8,8 @@
 use anisomesh::adapt::sources::derivatives_at_scale;
 use anisomesh::adapt::{adapt_to_shape, ShapeAdaptOptions};
 use anisomesh::bench::convergence::{
-    corners_of, fitted_gain, hausdorff_split, metric_for, run, vertices_at_error,
-    ConvergenceOptions, Family, CORNER_RADIUS,
+    anisotropy_gain, corners_of, fitted_gain, hausdorff_split, metric_for, run, vertices_at_error,
+    ConvergenceOptions, ConvergenceRow, Family, CORNER_RADIUS,
 };
 use anisomesh::levelset::{extract_zero_level, interface_distance, shape_by_name};
 use anisomesh::DVec2;
@@ -203,4 +203,35 @@ fn paper_claim_isotropic_graded_mesh_at_equal_hmin() {
         );
     }
     assert_eq!(rows[0].isotropic.vertices, rows[1].isotropic.vertices);
+}
+
+/// Equal-area-error ratios of [`anisotropy_gain`] on exact power laws: anisotropic area error
+/// `1/N²`, isotropic `9/N²` (three times the vertices for the same error) give 3 at every
+/// error of the overlap, from both families' points.
+#[test]
+fn equal_area_error_ratio_of_power_laws() {
+    let mk = |family: Family, n: f64, area: f64| ConvergenceRow {
+        family,
+        parameter: 0.0,
+        hmin: 0.0,
+        vertices: n as usize,
+        triangles: 0,
+        hausdorff: 1.0 / n,
+        hausdorff_corners: 0.0,
+        hausdorff_rest: 1.0 / n,
+        area_rel_error: area,
+        perimeter_rel_error: 0.0,
+        seconds: 0.0,
+        converged: true,
+    };
+    let mut rows = Vec::new();
+    for n in [1000.0, 2000.0, 4000.0] {
+        rows.push(mk(Family::Anisotropic, n, 1.0 / (n * n)));
+        rows.push(mk(Family::Isotropic, 3.0 * n, 9.0 / (9.0 * n * n)));
+    }
+    let g = anisotropy_gain(&rows);
+    assert_eq!(g.at_equal_area_error.len(), 6);
+    for (e, r) in &g.at_equal_area_error {
+        assert!((r - 3.0).abs() < 1e-9, "ratio {r} at area error {e:e}");
+    }
 }

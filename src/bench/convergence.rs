@@ -180,6 +180,9 @@ pub struct AnisotropyGain {
     /// two families, at errors log-spaced over the overlap of their ranges (less sensitive to
     /// one noisy sweep point than the interpolation).
     pub fitted: Vec<(f64, f64)>,
+    /// `(relative area error, isotropic / anisotropic vertices)` at equal area error, as
+    /// `at_equal_error` (each family's count interpolated log-log at the other's errors).
+    pub at_equal_area_error: Vec<(f64, f64)>,
 }
 
 /// What [`run`] measured.
@@ -264,6 +267,9 @@ impl ConvergenceReport {
         }
         for (e, r) in &self.gain.fitted {
             s += &format!("fitted power laws, error {e:.3e}: isotropic / anisotropic = {r:.2}\n");
+        }
+        for (e, r) in &self.gain.at_equal_area_error {
+            s += &format!("equal area error {e:.3e}: isotropic / anisotropic vertices = {r:.2}\n");
         }
         for (eps, r) in &self.gain.at_equal_eps {
             s += &format!("equal eps {eps:.1e}: isotropic / anisotropic vertices = {r:.2}\n");
@@ -720,13 +726,30 @@ pub fn vertices_at_error(points: &[(f64, f64)], e: f64) -> Option<f64> {
 
 /// The gain of anisotropy over the rows (see [`AnisotropyGain`]).
 pub fn anisotropy_gain(rows: &[ConvergenceRow]) -> AnisotropyGain {
-    let pts = |f: Family| -> Vec<(f64, f64)> {
+    let pts = |f: Family, err: fn(&ConvergenceRow) -> f64| -> Vec<(f64, f64)> {
         rows.iter()
             .filter(|r| r.family == f)
-            .map(|r| (r.vertices as f64, r.hausdorff))
+            .map(|r| (r.vertices as f64, err(r)))
             .collect()
     };
-    let (ani, iso) = (pts(Family::Anisotropic), pts(Family::Isotropic));
+    let (ani, iso) = (
+        pts(Family::Anisotropic, |r| r.hausdorff),
+        pts(Family::Isotropic, |r| r.hausdorff),
+    );
+    let (ani_area, iso_area) = (
+        pts(Family::Anisotropic, |r| r.area_rel_error),
+        pts(Family::Isotropic, |r| r.area_rel_error),
+    );
+    let mut at_equal_area_error: Vec<(f64, f64)> = ani_area
+        .iter()
+        .filter_map(|&(na, e)| vertices_at_error(&iso_area, e).map(|ni| (e, ni / na)))
+        .chain(
+            iso_area
+                .iter()
+                .filter_map(|&(ni, e)| vertices_at_error(&ani_area, e).map(|na| (e, ni / na))),
+        )
+        .collect();
+    at_equal_area_error.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut at_equal_error = Vec::new();
     for &(na, e) in &ani {
         if let Some(ni) = vertices_at_error(&iso, e) {
@@ -771,6 +794,7 @@ pub fn anisotropy_gain(rows: &[ConvergenceRow]) -> AnisotropyGain {
         median_at_equal_error,
         at_equal_eps,
         fitted: fitted_gain(&ani, &iso, 4),
+        at_equal_area_error,
     }
 }
 
