@@ -16,8 +16,15 @@
 //! interface instead of `5 ε`, `--grade G` grows sizes at rate `G` outside it instead of 1;
 //! `--kink K` sees the kinks of the distance at the scale `K h_min`). With `ANISOMESH_QUICK=1`: a
 //! tiny sweep (3 points per family, seconds) written to a temporary directory.
+//!
+//! `--paper-claim` (Zalesak) runs instead the comparison of 004 §5.1 as stated: at `ε = 1e-4`
+//! (`h_min = 0.001`, `h_max = 0.2`, the default `anisomesh adapt` run) the anisotropic mesh
+//! against the isotropic graded mesh with the same smallest size and gradation, for a few band
+//! widths and growth rates ([`anisomesh::bench::convergence_claim`]); quick: `ε = 1e-2`, two
+//! settings.
 
 use anisomesh::bench::convergence::{run, ConvergenceOptions};
+use anisomesh::bench::convergence_claim::{claim_table, paper_claim, CLAIM_SETTINGS};
 use std::path::PathBuf;
 
 fn main() -> anisomesh::Result<()> {
@@ -26,6 +33,7 @@ fn main() -> anisomesh::Result<()> {
     let mut positional = Vec::new();
     let mut out: Option<PathBuf> = None;
     let mut peers = true;
+    let mut claim = false;
     let d = ConvergenceOptions::default();
     let (mut kink_scale, mut band_hmin, mut grade) = (d.kink_scale, d.band_hmin, d.grade);
     let num = |v: Option<&String>| v.and_then(|s| s.parse::<f64>().ok());
@@ -34,6 +42,7 @@ fn main() -> anisomesh::Result<()> {
         match a.as_str() {
             "--out" => out = it.next().map(PathBuf::from),
             "--no-peers" => peers = false,
+            "--paper-claim" => claim = true,
             "--kink" => kink_scale = num(it.next()),
             "--band" => band_hmin = num(it.next()),
             "--grade" => grade = num(it.next()),
@@ -44,6 +53,15 @@ fn main() -> anisomesh::Result<()> {
         .first()
         .cloned()
         .unwrap_or_else(|| "zalesak".into());
+    if claim {
+        let (eps, settings) = if quick {
+            (1e-2, &CLAIM_SETTINGS[..2])
+        } else {
+            (1e-4, &CLAIM_SETTINGS[..])
+        };
+        print!("{}", claim_table(&paper_claim(&shape, eps, settings)?));
+        return Ok(());
+    }
     let points = positional.get(1).and_then(|s| s.parse().ok()).unwrap_or(5);
     let out_dir = match (quick, out) {
         (true, _) => {

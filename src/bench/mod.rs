@@ -2,6 +2,7 @@
 
 pub mod adapt_run;
 pub mod convergence;
+pub mod convergence_claim;
 pub mod convergence_figure;
 pub mod couette;
 pub mod couette_sweep;
