@@ -164,7 +164,8 @@ pub struct PassReport {
 }
 
 /// What [`adapt`] did. `converged` means the last cycle split or collapsed at most one edge per
-/// 2,000 vertices; `converged == false` means the cycle cap was reached with edges still
+/// 2,000 vertices, or exactly as many edges as the cycle before and few (a limit cycle of at
+/// most `max(8, n/500)` operations); `converged == false` means the cycle cap was reached with edges still
 /// out of range: the mesh is valid, only not fully adapted.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct AdaptReport {
@@ -292,15 +293,16 @@ pub fn adapt(
             Ok(n)
         };
         // Spatial renumbering keeps fan walks cache-friendly as the mesh grows: whenever splits
-        // have doubled the vertex count since the last one, and at the start of a cycle when
+        // have grown the vertex count by half since the last one, and at the start of a cycle when
         // they have added 10%.
         let mut renumbered_at = 0;
+        let mut last_ops = None;
         for _cycle in 0..opts.max_cycles {
             rep.cycles += 1;
             let mut ns = 0;
             for _ in 0..64 {
                 let n = ctx.mesh.n_points();
-                if n >= 2 * renumbered_at.max(1) || (ns == 0 && 10 * n >= 11 * renumbered_at) {
+                if 2 * n >= 3 * renumbered_at.max(1) || (ns == 0 && 10 * n >= 11 * renumbered_at) {
                     ctx.renumber_spatially();
                     renumbered_at = ctx.mesh.n_points();
                 }
@@ -317,12 +319,17 @@ pub fn adapt(
             if opts.cycle_smoothing == CycleSmoothing::Touched {
                 ctx.smoothing_settled();
             }
-            // Converged: the cycle changed (almost) nothing — at most 1 in 2,000 vertices.
+            // Converged: the cycle changed (almost) nothing — at most 1 in 2,000 vertices — or
+            // it repeated the previous cycle's few operations exactly: a split/collapse limit
+            // cycle (seen between two required vertices of a labelled kink edge) that more
+            // cycles would only repeat.
             let nv = ctx.mesh.n_points();
-            if ns + nc <= nv / 2000 {
+            let repeated = last_ops == Some((ns, nc)) && ns + nc <= (nv / 500).max(8);
+            if ns + nc <= nv / 2000 || repeated {
                 rep.converged = true;
                 break;
             }
+            last_ops = Some((ns, nc));
         }
         for _ in 0..opts.final_sweeps {
             let nf = run(&mut ctx, PassKind::Flip, &mut rep)?;

@@ -32,13 +32,29 @@ pub struct InsertPlan {
     pub boundary: Vec<(u32, u32, u32, u8, i32)>,
 }
 
-/// Upper-triangular `L` with `M = Lᵀ L`, applied to `x`: the metric-space coordinates.
-#[inline]
-fn to_metric_space(m: &Sym2, x: DVec2) -> DVec2 {
-    let a = m.xx.sqrt();
-    let b = m.xy / a;
-    let c = (m.det() / m.xx).sqrt();
-    DVec2::new(a * x.x + b * x.y, c * x.y)
+/// Upper-triangular `L` with `M = Lᵀ L`: `x -> L x` maps to the metric-space coordinates.
+#[derive(Clone, Copy)]
+struct MetricSpace {
+    a: f64,
+    b: f64,
+    c: f64,
+}
+
+impl MetricSpace {
+    #[inline]
+    fn new(m: &Sym2) -> MetricSpace {
+        let a = m.xx.sqrt();
+        MetricSpace {
+            a,
+            b: m.xy / a,
+            c: (m.det() / m.xx).sqrt(),
+        }
+    }
+
+    #[inline]
+    fn map(&self, x: DVec2) -> DVec2 {
+        DVec2::new(self.a * x.x + self.b * x.y, self.c * x.y)
+    }
 }
 
 /// Pure check: the insertion of the metric midpoint of the unlabelled interior edge planned by
@@ -56,7 +72,8 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
         None => ctx.interpolate_metric(&[a, b], &[1.0 - split.s, split.s]),
     };
     let p = split.p;
-    let pm = to_metric_space(&m, p);
+    let space = MetricSpace::new(&m);
+    let pm = space.map(p);
     let mesh = &*ctx.mesh;
     let mut cavity: Vec<u32> = vec![t as u32, t2];
     let mut k = 0;
@@ -67,7 +84,7 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
             if nb == NONE || mesh.edge_ref[c][e] != 0 || cavity.contains(&nb) {
                 continue;
             }
-            let q = mesh.tris[nb as usize].map(|v| to_metric_space(&m, mesh.points[v as usize]));
+            let q = mesh.tris[nb as usize].map(|v| space.map(mesh.points[v as usize]));
             if incircle(q[0], q[1], q[2], pm) > 0.0 {
                 cavity.push(nb);
             }
