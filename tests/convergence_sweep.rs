@@ -175,7 +175,7 @@ fn zalesak_hausdorff_is_attained_at_the_corners() {
 /// interface error (its size across *and along* the interface is `h_min`); it does not depend
 /// on the `ε` of eq. (6) (`λ_max = 1/h_min²` as long as `κ/ε < 1/h_min²`). (At `h_min = 0.001`
 /// a larger `ε` raises the ratio — `convergence_sweep --paper-claim` — but at this coarse
-/// setting it does not: 3.53 at `ε = 1e-2`, 3.28 at `4e-2`.)
+/// setting it does not: about 3.5 at `ε = 1e-2`, 3.3 at `4e-2`.)
 #[test]
 fn paper_claim_isotropic_graded_mesh_at_equal_hmin() {
     use anisomesh::bench::convergence_claim::{claim_table, paper_claim, ClaimSetting};

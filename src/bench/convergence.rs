@@ -7,10 +7,10 @@
 //! - the two-sided interface distance `d_H(Γ_h, Γ)` ([`crate::levelset::interface_distance`]);
 //! - the relative area error `|A(u_h < 0) - A| / A` ([`crate::levelset::enclosed_area`] against
 //!   [`Shape::exact_area`]) and the relative perimeter error (the measures of 004 §5.1);
-//! - the vertex count and the seconds spent generating the mesh.
-//!
-//! - the same split into the part attained within [`CORNER_RADIUS`] of a corner of the shape
-//!   and the rest ([`hausdorff_split`]: on the Zalesak disk the corners decide).
+//! - the vertex count and the seconds spent generating the mesh;
+//! - the Hausdorff distance split into the part attained within [`CORNER_RADIUS`] of a corner
+//!   of the shape and the rest ([`hausdorff_split`]: on the Zalesak disk the corners decided
+//!   before the corner features of [`ShapeAdaptOptions::features`]; with them the rest does).
 //!
 //! The three families:
 //! 1. **anisotropic**: the geometric metric of 004 eq. (6), `M = ∇u∇uᵀ/h_min² + |D²u|/ε`, with
