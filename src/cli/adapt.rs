@@ -127,8 +127,9 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         println!("two-sided interface distance (Hausdorff) {h:.3e}");
     }
     println!(
-        "{:.2} s ({} cycles, {} splits, {} collapses, {} flips, {} moves{})",
+        "{:.2} s, {:.0} vertices/s ({} cycles, {} splits, {} collapses, {} flips, {} moves{})",
         m.seconds,
+        m.vertices as f64 / m.seconds.max(1e-9),
         r.cycles,
         r.splits,
         r.collapses,
