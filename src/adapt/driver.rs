@@ -45,7 +45,8 @@ pub struct AdaptOptions {
 }
 
 /// Which vertices the one smoothing sweep of a split/collapse cycle examines. The final sweeps
-/// after the cycles always relax (each re-examines the neighbours of the previous one's moves).
+/// after the cycles relax from one to the next (each re-examines the neighbours of the previous
+/// final sweep's moves).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub enum CycleSmoothing {
     /// The vertices whose ball changed since the previous cycle's sweep began: those the
@@ -164,8 +165,8 @@ pub struct PassReport {
 }
 
 /// What [`adapt`] did. `converged` means the last cycle split or collapsed at most one edge per
-/// 2,000 vertices, or exactly as many edges as the cycle before and few (a limit cycle of at
-/// most `max(8, n/500)` operations); `converged == false` means the cycle cap was reached with edges still
+/// 2,000 vertices, or made as many splits as collapses (at most 8 each) and the same numbers as
+/// the cycle before (a split/collapse limit cycle); `converged == false` means the cycle cap was reached with edges still
 /// out of range: the mesh is valid, only not fully adapted.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct AdaptReport {
@@ -241,7 +242,7 @@ pub fn validate_inputs(mesh: &Mesh2, metric: &[Sym2], fields: &[Vec<f64>]) -> Re
 /// the elements have been flipped and smoothed toward `Q_ani = 1`. The P1 `fields` are carried
 /// through every operation (interpolated, or evaluated by `source` when it provides them); the
 /// metric at new vertices comes from `source` when it has one (`metric_at` returns `Some`), else
-/// it is interpolated log-Euclidean. The mesh is compacted at the end; metric and fields are
+/// it is interpolated by the rule of `opts.interpolation`. The mesh is compacted at the end; metric and fields are
 /// renumbered with it.
 ///
 /// Errors: an invalid mesh, a metric of the wrong length or not SPD (naming the vertex), a field
@@ -320,11 +321,11 @@ pub fn adapt(
                 ctx.smoothing_settled();
             }
             // Converged: the cycle changed (almost) nothing — at most 1 in 2,000 vertices — or
-            // it repeated the previous cycle's few operations exactly: a split/collapse limit
-            // cycle (seen between two required vertices of a labelled kink edge) that more
-            // cycles would only repeat.
+            // it made as many splits as collapses, at most 8 of each, and the same numbers as the
+            // previous cycle: a split/collapse limit cycle (seen next to a labelled kink edge
+            // between required vertices) that more cycles would only repeat.
             let nv = ctx.mesh.n_points();
-            let repeated = last_ops == Some((ns, nc)) && ns + nc <= (nv / 500).max(8);
+            let repeated = last_ops == Some((ns, nc)) && ns == nc && ns + nc <= 16;
             if ns + nc <= nv / 2000 || repeated {
                 rep.converged = true;
                 break;

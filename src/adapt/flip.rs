@@ -37,10 +37,17 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
     if q_old * GAIN <= 1.0 {
         return None;
     }
-    // A non-convex quadrilateral gives a triangle of non-positive area, whose Q_ani is +inf:
-    // the quality test rejects it first; the exact orientation tests confirm an acceptance.
+    // Quality first, the exact orientation tests (convex quadrilateral) last: a triangle whose
+    // floating-point area is not positive has Q_ani = +inf and fails the quality test, the
+    // exact tests decide the near-degenerate rest. The conditions are those of a convexity
+    // test followed by `max(q1, q2) < bound` (`f64::max` skips a NaN), in a cheaper order.
     let bound = GAIN * q_old;
-    if ctx.q([c, a, d]) >= bound || ctx.q([d, b, c]) >= bound {
+    let q1 = ctx.q([c, a, d]);
+    if q1 >= bound {
+        return None;
+    }
+    let q_new = q1.max(ctx.q([d, b, c]));
+    if q_new >= bound || q_new.is_nan() {
         return None;
     }
     let (pa, pb, pc, pd) = (ctx.p(a), ctx.p(b), ctx.p(c), ctx.p(d));

@@ -67,18 +67,20 @@ pub fn check_fan(ctx: &Ctx, v: u32, fan: &[u32]) -> Option<MovePlan> {
     if !target.is_finite() || q_old * GAIN <= 1.0 {
         return None;
     }
-    // A move is kept when every triangle of the fan improves on `GAIN * q_old`. An inverted
-    // triangle has Q_ani = +inf, so the quality test rejects it first; the exact orientation
-    // tests confirm an acceptance.
+    // A move is kept when every triangle of the fan improves on `GAIN * q_old` (a NaN quality
+    // is skipped, as `f64::max` over the fan skips it) and none inverts. Quality first: a
+    // triangle whose floating-point area is not positive has Q_ani = +inf and fails it; the
+    // exact orientation tests decide the near-degenerate rest.
     let bound = GAIN * q_old;
     for omega in [1.0, 0.5, 0.25] {
         let p = pv + omega * (target - pv);
         if p == pv {
             return None;
         }
-        let improves = fan
-            .iter()
-            .all(|&t| ctx.q_moved(mesh.tris[t as usize], v, p, &mv, &lv) < bound);
+        let improves = fan.iter().all(|&t| {
+            let q = ctx.q_moved(mesh.tris[t as usize], v, p, &mv, &lv);
+            q < bound || q.is_nan()
+        });
         let valid = improves
             && fan.iter().all(|&t| {
                 let tri = mesh.tris[t as usize];

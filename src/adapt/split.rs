@@ -161,20 +161,28 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<u64>) -> usize {
     ctx.split_pos = ctx.log.len();
     cand.clear();
     let l_max = ctx.params.l_max;
-    // Only edges of triangles modified since the last split pass. An edge shared with a listed
-    // triangle of lower index is measured from there (same length class, and that key sorts
-    // first). The keys are unique, so the order does not depend on how they were collected.
+    // Only edges of triangles modified since the last split pass. An edge shared by two listed
+    // triangles is measured once, from the one of lower index, and gets a key for each side (the
+    // check is not symmetric in the last bits of the new point, and the apply loop tries the
+    // second side when the first fails). The keys are unique, so their order does not depend
+    // on how they were collected.
     let list = ctx.logged_since(from);
     let gen = ctx.gen;
     let keys = |c: &Ctx, t: u32, out: &mut dyn FnMut(u64)| {
         let tri = c.mesh.tris[t as usize];
         for i in 0..3 {
             let nb = c.mesh.neighbours[t as usize][i];
-            if nb < t && c.tseen[nb as usize] == gen {
+            let nb_listed = nb != NONE && c.tseen[nb as usize] == gen;
+            if nb_listed && nb < t {
                 continue;
             }
             if let Some(l) = c.len_if_above(tri[next(i)], tri[prev(i)], l_max) {
                 out(split_key(l, t, i));
+                if nb_listed {
+                    if let Some(j) = c.mesh.mirror_edge(t as usize, nb as usize) {
+                        out(split_key(l, nb, j));
+                    }
+                }
             }
         }
     };

@@ -427,7 +427,7 @@ impl<'a> Ctx<'a> {
     }
 
     /// Metric and field values at `p` from the source, or interpolated with `weights` over
-    /// `verts` (metric log-Euclidean, fields linear). Field values go to `self.scratch_f`.
+    /// `verts` (metric by `params.interpolation`, fields linear). Field values go to `self.scratch_f`.
     pub(crate) fn sample(&mut self, p: DVec2, verts: &[u32], weights: &[f64]) -> Sym2 {
         let (m, fields_done) = match self.source {
             Some(s) => (s.metric_at(p), s.fields_at(p, &mut self.scratch_f)),
