@@ -7,7 +7,9 @@
 //! still cut where the corner's fan straddles the kink of the distance).
 
 use anisomesh::adapt::features::{insert_point, kink_point, Insertion, KINK_LABEL};
-use anisomesh::adapt::{adapt_to_shape, mesh_report, AnalyticLevelSetSource, ShapeAdaptOptions};
+use anisomesh::adapt::{
+    adapt_to_shape, mesh_report, AnalyticLevelSetSource, MeshReport, ShapeAdaptOptions,
+};
 use anisomesh::error::Error;
 use anisomesh::levelset::{Circle, Difference, Rotated, Shape, Zalesak};
 use anisomesh::mesh::{GridPattern, Mesh2};
@@ -213,22 +215,10 @@ fn zalesak_run_with(
             if kink_edge.is_none() {
                 continue;
             }
-            let kinked = mesh.vertex_fan(v as u32).iter().any(|&t| {
-                (0..3).any(|i| {
-                    mesh.edge_ref[t as usize][i] == KINK_LABEL
-                        && mesh.edge_vertices(t as usize, i).contains(&(v as u32))
-                })
-            });
-            assert!(kinked, "no kink edge at corner {c}");
+            assert!(has_kink_edge(&mesh, v), "no kink edge at corner {c}");
         }
     }
-    let src = AnalyticLevelSetSource::new(
-        |p| (shape.distance(p), shape.gradient(p), shape.hessian(p)),
-        opts.metric,
-    );
-    let (mut metric, _) = src.evaluate(&mesh);
-    anisomesh::metric::gradate(&mesh, &mut metric, opts.gradation.unwrap()).unwrap();
-    let r = mesh_report(&mesh, &metric, &u, Some(&shape)).unwrap();
+    let r = report_in_graded_metric(&mesh, &u, &shape, &opts);
     let per = (r.perimeter - r.exact_perimeter.unwrap()).abs() / r.exact_perimeter.unwrap();
     eprintln!(
         "eps x{eps_scale} hmin x{hmin_scale} features {features}: {} vertices, d_H {:.3e}, area {:.2e}, perimeter {per:.2e}, in range {:.4}, Q {:.3}/{:.3}",
@@ -334,21 +324,35 @@ fn rotated_zalesak_keeps_exact_corners() {
             .position(|&p| p == c)
             .expect("corner vertex");
         assert!(mesh.required[v] && u[v].abs() < 1e-15);
-        let kinked = mesh.vertex_fan(v as u32).iter().any(|&t| {
-            (0..3).any(|i| {
-                mesh.edge_ref[t as usize][i] == KINK_LABEL
-                    && mesh.edge_vertices(t as usize, i).contains(&(v as u32))
-            })
-        });
-        assert!(kinked, "no kink edge at {c}");
+        assert!(has_kink_edge(&mesh, v), "no kink edge at {c}");
     }
+    let r = report_in_graded_metric(&mesh, &u, &shape, &opts);
+    eprintln!("rotated: {r:?}");
+    assert!(r.vertices <= 5000 && r.hausdorff.unwrap() <= 6e-5, "{r:?}");
+}
+
+/// Whether vertex `v` has an edge labelled `KINK_LABEL`.
+fn has_kink_edge(mesh: &Mesh2, v: usize) -> bool {
+    mesh.vertex_fan(v as u32).iter().any(|&t| {
+        (0..3).any(|i| {
+            mesh.edge_ref[t as usize][i] == KINK_LABEL
+                && mesh.edge_vertices(t as usize, i).contains(&(v as u32))
+        })
+    })
+}
+
+/// The mesh report in the graded eq. (6) metric of `opts` evaluated exactly at the vertices.
+fn report_in_graded_metric(
+    mesh: &Mesh2,
+    u: &[f64],
+    shape: &dyn Shape,
+    opts: &ShapeAdaptOptions,
+) -> MeshReport {
     let src = AnalyticLevelSetSource::new(
         |p| (shape.distance(p), shape.gradient(p), shape.hessian(p)),
         opts.metric,
     );
-    let (mut metric, _) = src.evaluate(&mesh);
-    anisomesh::metric::gradate(&mesh, &mut metric, opts.gradation.unwrap()).unwrap();
-    let r = mesh_report(&mesh, &metric, &u, Some(&shape)).unwrap();
-    eprintln!("rotated: {r:?}");
-    assert!(r.vertices <= 5000 && r.hausdorff.unwrap() <= 6e-5, "{r:?}");
+    let (mut metric, _) = src.evaluate(mesh);
+    anisomesh::metric::gradate(mesh, &mut metric, opts.gradation.unwrap()).unwrap();
+    mesh_report(mesh, &metric, u, Some(shape)).unwrap()
 }
