@@ -210,3 +210,30 @@ fn adapt_conforms_to_a_metric_file_and_to_a_level_set_file() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `anisomesh convergence --paper-claim --quick`: the paper's equal-hmin comparison prints a table
+/// whose isotropic graded meshes have more vertices than the anisotropic ones.
+#[test]
+fn convergence_paper_claim_prints_the_comparison() {
+    let out = anisomesh(&["convergence", "--paper-claim", "--quick"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("paper claim"), "{text}");
+    let ratios: Vec<f64> = text
+        .lines()
+        .filter(|l| l.starts_with("eps "))
+        .filter_map(|l| l.split_whitespace().nth(11).and_then(|x| x.parse().ok()))
+        .collect();
+    assert_eq!(ratios.len(), 2, "{text}");
+    assert!(ratios.iter().all(|&r| r > 1.5), "{ratios:?}\n{text}");
+    assert_clean_error(
+        &anisomesh(&[
+            "convergence",
+            "--paper-claim",
+            "--quick",
+            "--shape",
+            "nosuch",
+        ]),
+        "unknown shape",
+    );
+}

@@ -174,6 +174,11 @@ pub struct ConvergenceArgs {
     /// A tiny sweep (seconds).
     #[arg(long)]
     quick: bool,
+    /// Instead of the sweep, the comparison of 004 §5.1 as the paper states it: the anisotropic
+    /// mesh against the isotropic graded mesh with the same smallest size (hmin 0.001, eps
+    /// 1e-4, several bands and gradations; about 30 s; with --quick eps 1e-2, two settings).
+    #[arg(long)]
+    paper_claim: bool,
     /// Output directory (CSV and PNG).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -181,6 +186,16 @@ pub struct ConvergenceArgs {
 
 /// Interface error versus vertex count for anisotropic, isotropic-adapted and uniform meshes.
 pub fn convergence(a: ConvergenceArgs) -> Result<()> {
+    if a.paper_claim {
+        use anisomesh::bench::convergence_claim::{claim_table, paper_claim, CLAIM_SETTINGS};
+        let (eps, settings) = if a.quick {
+            (1e-2, &CLAIM_SETTINGS[..2])
+        } else {
+            (1e-4, &CLAIM_SETTINGS[..])
+        };
+        print!("{}", claim_table(&paper_claim(&a.shape, eps, settings)?));
+        return Ok(());
+    }
     let opts = convergence::ConvergenceOptions {
         shape: a.shape,
         points: a.points,
