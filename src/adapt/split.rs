@@ -41,8 +41,8 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<SplitPlan> {
     let (c, a, b) = (tri[i], tri[next(i)], tri[prev(i)]);
     let (pa, pb) = (ctx.p(a), ctx.p(b));
     let e = pb - pa;
-    let (la, lb) = (ctx.m(a).quad(e).sqrt(), ctx.m(b).quad(e).sqrt());
-    if ctx.len(a, b) <= ctx.params.l_max {
+    let (la, lb) = ctx.end_lengths(a, b);
+    if crate::metric::length::geometric_mean_length(la, lb) <= ctx.params.l_max {
         return None;
     }
     let s = metric_midpoint(la, lb);

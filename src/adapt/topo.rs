@@ -6,6 +6,7 @@ use super::kernel;
 use super::sources::MetricSource;
 use crate::geom::DVec2;
 use crate::mesh::{next, prev, Mesh2, NONE};
+use crate::metric::length::geometric_mean_length;
 use crate::metric::Sym2;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
@@ -180,35 +181,35 @@ impl<'a> Ctx<'a> {
         &self.metric[v as usize]
     }
 
-    /// Metric length of the edge `(a, b)`.
+    /// The lengths of the edge vector `b - a` in the metrics of `a` and of `b`.
     #[inline]
-    pub(crate) fn len(&self, a: u32, b: u32) -> f64 {
-        kernel::edge_length(self.p(a), self.p(b), self.m(a), self.m(b))
+    pub(crate) fn end_lengths(&self, a: u32, b: u32) -> (f64, f64) {
+        let e = self.p(b) - self.p(a);
+        (self.m(a).quad(e).sqrt(), self.m(b).quad(e).sqrt())
     }
 
-    /// The metric length of `(a, b)` if it exceeds `l`, else `None`. The length is the
+    /// The metric length of `(a, b)` (004 §3.3, [`crate::metric::edge_length`]) if it exceeds
+    /// `l`, else `None`. The length is the
     /// logarithmic mean of the end lengths, which lies between their geometric and arithmetic
     /// means: most edges are decided by those bounds without the logarithm.
     #[inline]
     pub(crate) fn len_if_above(&self, a: u32, b: u32, l: f64) -> Option<f64> {
-        let e = self.p(b) - self.p(a);
-        let (la, lb) = (self.m(a).quad(e).sqrt(), self.m(b).quad(e).sqrt());
+        let (la, lb) = self.end_lengths(a, b);
         if 0.5 * (la + lb) < l * (1.0 - 1e-12) {
             return None;
         }
-        let len = crate::metric::length::geometric_mean_length(la, lb);
+        let len = geometric_mean_length(la, lb);
         (len > l).then_some(len)
     }
 
     /// The metric length of `(a, b)` if it is below `l`, else `None` (see [`Ctx::len_if_above`]).
     #[inline]
     pub(crate) fn len_if_below(&self, a: u32, b: u32, l: f64) -> Option<f64> {
-        let e = self.p(b) - self.p(a);
-        let (la, lb) = (self.m(a).quad(e).sqrt(), self.m(b).quad(e).sqrt());
+        let (la, lb) = self.end_lengths(a, b);
         if (la * lb).sqrt() > l * (1.0 + 1e-12) {
             return None;
         }
-        let len = crate::metric::length::geometric_mean_length(la, lb);
+        let len = geometric_mean_length(la, lb);
         (len < l).then_some(len)
     }
 
