@@ -32,6 +32,37 @@ pub(crate) fn hilbert_index(mut x: u32, mut y: u32) -> u64 {
     d
 }
 
+/// `keys` sorted stably by their high 32 bits (least-significant-digit radix sort, 11 bits per
+/// pass; passes whose digit is the same for every key are skipped).
+fn radix_sort_high_word(mut keys: Vec<u64>) -> Vec<u64> {
+    const BITS: u32 = 11;
+    let mut buf = vec![0u64; keys.len()];
+    let mut shift = 32;
+    while shift < 64 {
+        let digit = |k: u64| ((k >> shift) & ((1 << BITS) - 1)) as usize;
+        let mut count = [0usize; 1 << BITS];
+        for &k in &keys {
+            count[digit(k)] += 1;
+        }
+        if count.contains(&keys.len()) {
+            shift += BITS;
+            continue;
+        }
+        let mut sum = 0;
+        for c in count.iter_mut() {
+            (*c, sum) = (sum, sum + *c);
+        }
+        for &k in &keys {
+            let d = digit(k);
+            buf[count[d]] = k;
+            count[d] += 1;
+        }
+        std::mem::swap(&mut keys, &mut buf);
+        shift += BITS;
+    }
+    keys
+}
+
 impl Mesh2 {
     /// Like [`Mesh2::compact`], and numbers the kept vertices along a Hilbert curve and the live
     /// triangles by their smallest new vertex index. Returns the maps old -> new for vertices
@@ -54,8 +85,9 @@ impl Mesh2 {
         } else {
             0.0
         };
-        // Keys are unique (they hold the index), so the parallel sort is deterministic.
-        let mut keys: Vec<(u64, u32)> = self
+        // Hilbert index in the high word, vertex index in the low one; a stable sort on the high
+        // word then orders equal cells by vertex index, as sorting the whole keys would.
+        let keys: Vec<u64> = self
             .points
             .par_iter()
             .zip(&used)
@@ -63,25 +95,43 @@ impl Mesh2 {
             .filter(|(_, (_, &u))| u)
             .map(|(v, (p, _))| {
                 let q = (*p - lo) * scale;
-                (hilbert_index(q.x as u32, q.y as u32), v as u32)
+                (hilbert_index(q.x as u32, q.y as u32) << 32) | v as u64
             })
             .collect();
-        keys.par_sort_unstable();
-        let vorder: Vec<u32> = keys.iter().map(|&(_, v)| v).collect();
+        let vorder: Vec<u32> = radix_sort_high_word(keys)
+            .into_iter()
+            .map(|k| k as u32)
+            .collect();
         let mut vmap = vec![NONE; self.points.len()];
         for (new, &old) in vorder.iter().enumerate() {
             vmap[old as usize] = new as u32;
         }
-        let mut tkeys: Vec<u64> = (0..self.tris.len())
-            .into_par_iter()
-            .filter(|&t| !self.is_deleted(t))
-            .map(|t| {
-                let lowest = self.tris[t].iter().map(|&v| vmap[v as usize]).min();
-                (u64::from(lowest.unwrap_or(NONE)) << 32) | t as u64
+        // Triangles by their lowest new vertex, equal ones in index order: a counting sort.
+        let lowest: Vec<u32> = self
+            .tris
+            .par_iter()
+            .map(|tri| match tri[0] {
+                NONE => NONE,
+                _ => tri.iter().map(|&v| vmap[v as usize]).min().unwrap_or(NONE),
             })
             .collect();
-        tkeys.par_sort_unstable();
-        let torder: Vec<u32> = tkeys.iter().map(|&k| k as u32).collect();
+        let mut first = vec![0u32; vorder.len() + 1];
+        for &l in &lowest {
+            if l != NONE {
+                first[l as usize + 1] += 1;
+            }
+        }
+        for k in 1..first.len() {
+            first[k] += first[k - 1];
+        }
+        let mut torder = vec![0u32; first[vorder.len()] as usize];
+        for (t, &l) in lowest.iter().enumerate() {
+            if l != NONE {
+                let slot = &mut first[l as usize];
+                torder[*slot as usize] = t as u32;
+                *slot += 1;
+            }
+        }
         self.renumber(&vorder, &torder)
     }
 }
@@ -107,6 +157,24 @@ mod tests {
             let step = a.0.abs_diff(b.0) + a.1.abs_diff(b.1);
             assert_eq!(step, 1, "cells {d} and {} are not neighbours", d + 1);
         }
+    }
+
+    #[test]
+    fn radix_sort_orders_by_the_high_word_and_keeps_ties_in_order() {
+        // A pseudo-random sequence with many equal high words (few distinct cells).
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let keys: Vec<u64> = (0..20_000u64)
+            .map(|i| {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                ((x % 5_000) << 32 | (x >> 40) << 52) & !0xffff_ffff | i
+            })
+            .collect();
+        let mut expect = keys.clone();
+        expect.sort_unstable();
+        assert_eq!(radix_sort_high_word(keys), expect);
+        assert!(radix_sort_high_word(Vec::new()).is_empty());
     }
 
     #[test]
