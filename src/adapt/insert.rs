@@ -30,6 +30,9 @@ pub struct InsertPlan {
     pub ends: [u32; 2],
     pub cavity: Vec<u32>,
     pub boundary: Vec<(u32, u32, u32, u8, i32)>,
+    /// `Q_ani` of the star triangle on each boundary edge in the arithmetic-mean element metric
+    /// (what [`Ctx::q`] computes by default, so `apply` caches it).
+    pub q_star: Vec<f64>,
 }
 
 /// Upper-triangular `L` with `M = Lᵀ L`: `x -> L x` maps to the metric-space coordinates.
@@ -153,12 +156,14 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
     }
     // Quality: the star must not be worse than the cavity beyond the floor.
     let q_old = cavity.iter().map(|&c| ctx.q_tri(c)).fold(1.0, f64::max);
-    let mut q_new: f64 = 1.0;
-    for &(u, w, ..) in &boundary {
-        let pts = [p, mesh.points[u as usize], mesh.points[w as usize]];
-        let ms = [&m, ctx.m(u), ctx.m(w)];
-        q_new = q_new.max(super::kernel::q_ani_mean(pts, ms));
-    }
+    let q_star: Vec<f64> = boundary
+        .iter()
+        .map(|&(u, w, ..)| {
+            let pts = [p, mesh.points[u as usize], mesh.points[w as usize]];
+            super::kernel::q_ani_mean(pts, [&m, ctx.m(u), ctx.m(w)])
+        })
+        .collect();
+    let q_new = q_star.iter().fold(1.0, |q, &x| f64::max(q, x));
     if !(q_new <= ctx.params.q_max || q_new <= q_old) {
         return None;
     }
@@ -169,6 +174,7 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
         ends: [a, b],
         cavity,
         boundary,
+        q_star,
     })
 }
 
@@ -200,6 +206,7 @@ pub fn apply(ctx: &mut Ctx, plan: &InsertPlan) -> u32 {
         ctx.mesh.edge_ref[tu] = [r, 0, 0];
         ctx.mesh.neighbours[tu] = [NONE; 3];
         ctx.touch(t);
+        ctx.set_fast_q(t, plan.q_star[k]);
         ctx.link(t, 0, nb, j as usize);
         ctx.mesh.vert_tri[u as usize] = t;
     }

@@ -236,6 +236,16 @@ impl<'a> Ctx<'a> {
         q
     }
 
+    /// Caches `q`, the arithmetic-mean `Q_ani` ([`kernel::q_ani_mean`]) of the live triangle `t`
+    /// as it is now, when that is the quality the operators use (no effect under
+    /// [`Ctx::exact_quality`]).
+    #[inline]
+    pub(crate) fn set_fast_q(&mut self, t: u32, q: f64) {
+        if self.fast_q {
+            *self.tq[t as usize].get_mut() = q.to_bits();
+        }
+    }
+
     /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with log-metric `lv`.
     #[inline]
     pub(crate) fn q_moved(&self, tri: [u32; 3], v: u32, pv: DVec2, mv: &Sym2, lv: &Sym2) -> f64 {

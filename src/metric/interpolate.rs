@@ -56,8 +56,7 @@ pub fn lerp_log(a: &Sym2, b: &Sym2, t: f64) -> Sym2 {
 /// coarser intermediate metrics: halfway between sizes 1e-5 and 0.2 this gives 0.1, the
 /// log-Euclidean mean 1.4e-3. Both inputs must be SPD.
 pub fn lerp_sizes(a: &Sym2, b: &Sym2, t: f64) -> Sym2 {
-    let root = a.sqrt();
-    let inv_root = a.powf(-0.5);
+    let (root, inv_root) = sqrt_and_inverse_sqrt(a);
     let (r0, r1) = (
         crate::geom::DVec2::new(inv_root.xx, inv_root.xy),
         crate::geom::DVec2::new(inv_root.xy, inv_root.yy),
@@ -74,6 +73,20 @@ pub fn lerp_sizes(a: &Sym2, b: &Sym2, t: f64) -> Sym2 {
     d.congruence(q0, q1)
 }
 
+/// `(a^{1/2}, a^{-1/2})` of a 2x2 SPD tensor in closed form, without an eigen-decomposition: with
+/// `s = sqrt(det a)` and `r = sqrt(tr a + 2 s)`, `a^{1/2} = (a + s I) / r` (Cayley–Hamilton) and
+/// its inverse is the adjugate of `a + s I` divided by `r s`. Every sum adds positive terms, so
+/// both stay accurate at high anisotropy.
+#[inline]
+fn sqrt_and_inverse_sqrt(a: &Sym2) -> (Sym2, Sym2) {
+    let s = a.det().sqrt();
+    let r = (a.xx + a.yy + 2.0 * s).sqrt();
+    let root = Sym2::new((a.xx + s) / r, a.xy / r, (a.yy + s) / r);
+    let rs = r * s;
+    let inv_root = Sym2::new((a.yy + s) / rs, -a.xy / rs, (a.xx + s) / rs);
+    (root, inv_root)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -81,6 +94,34 @@ mod tests {
 
     fn rel_diff(a: &Sym2, b: &Sym2) -> f64 {
         a.sub(b).norm() / a.norm().max(b.norm())
+    }
+
+    #[test]
+    fn closed_form_roots_match_the_eigen_roots() {
+        for (h, dir) in [
+            ([0.2, 1e-5], DVec2::new(0.3, 1.0)),
+            ([1.0, 1.0], DVec2::X),
+            ([0.1, 1e-3], DVec2::new(1.0, 1.0)),
+            ([1e-2, 3.0], DVec2::new(-2.0, 0.5)),
+        ] {
+            let a = Sym2::from_sizes(h, dir);
+            let (root, inv_root) = sqrt_and_inverse_sqrt(&a);
+            assert!(rel_diff(&root, &a.sqrt()) < 1e-10, "{a:?}");
+            assert!(rel_diff(&inv_root, &a.powf(-0.5)) < 1e-10, "{a:?}");
+            // The square of the root is `a`; the root times its inverse is the identity.
+            let (r0, r1) = (DVec2::new(root.xx, root.xy), DVec2::new(root.xy, root.yy));
+            assert!(rel_diff(&Sym2::IDENTITY.congruence(r0, r1), &a) < 1e-10);
+            let prod = [
+                r0.dot(DVec2::new(inv_root.xx, inv_root.xy)),
+                r0.dot(DVec2::new(inv_root.xy, inv_root.yy)),
+                r1.dot(DVec2::new(inv_root.xy, inv_root.yy)),
+            ];
+            assert!(
+                (prod[0] - 1.0).abs() < 1e-10 && prod[1].abs() < 1e-10,
+                "{prod:?}"
+            );
+            assert!((prod[2] - 1.0).abs() < 1e-10, "{prod:?}");
+        }
     }
 
     #[test]
