@@ -294,8 +294,9 @@ pub fn adapt(
             Ok(n)
         };
         // Spatial renumbering keeps fan walks cache-friendly as the mesh grows: whenever splits
-        // have grown the vertex count by half since the last one, and at the start of a cycle when
-        // they have added 10%.
+        // have grown the vertex count by 30% since the last one, and at the start of a cycle when
+        // they have added 10%. (On the eps 1e-5 speed case, growth steps of 50% instead of 30%
+        // made the adaptation about 10% slower; 20% gained nothing more.)
         let mut renumbered_at = 0;
         let mut last_ops = None;
         for _cycle in 0..opts.max_cycles {
@@ -303,7 +304,8 @@ pub fn adapt(
             let mut ns = 0;
             for _ in 0..64 {
                 let n = ctx.mesh.n_points();
-                if 2 * n >= 3 * renumbered_at.max(1) || (ns == 0 && 10 * n >= 11 * renumbered_at) {
+                if 10 * n >= 13 * renumbered_at.max(1) || (ns == 0 && 10 * n >= 11 * renumbered_at)
+                {
                     ctx.renumber_spatially();
                     renumbered_at = ctx.mesh.n_points();
                 }
