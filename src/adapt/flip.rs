@@ -11,11 +11,13 @@ use rayon::prelude::*;
 /// Relative improvement of the worse quality a flip must bring (avoids cycling).
 const GAIN: f64 = 0.99;
 
-/// A planned flip of local edge `i` of triangle `t`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// A planned flip of local edge `i` of triangle `t`, with the qualities of the two new
+/// triangles when the check computed them (`apply` caches them).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlipPlan {
     pub t: u32,
     pub i: u8,
+    pub q: Option<[f64; 2]>,
 }
 
 /// Pure check: whether flipping edge `(t, i)` is valid (convex quadrilateral, unlabelled interior
@@ -46,12 +48,17 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
     if q1 >= bound {
         return None;
     }
-    let q_new = q1.max(ctx.q([d, b, c]));
+    let q2 = ctx.q([d, b, c]);
+    let q_new = q1.max(q2);
     if q_new >= bound || q_new.is_nan() {
         return None;
     }
     let (pa, pb, pc, pd) = (ctx.p(a), ctx.p(b), ctx.p(c), ctx.p(d));
-    (orient2d(pc, pa, pd) > 0.0 && orient2d(pc, pd, pb) > 0.0).then_some(FlipPlan { t, i: i as u8 })
+    (orient2d(pc, pa, pd) > 0.0 && orient2d(pc, pd, pb) > 0.0).then_some(FlipPlan {
+        t,
+        i: i as u8,
+        q: Some([q1, q2]),
+    })
 }
 
 /// Applies a flip: `(c, a, b) + (d, b, a)` becomes `(c, a, d) + (d, b, c)`.
@@ -94,6 +101,11 @@ pub fn apply(ctx: &mut Ctx, plan: &FlipPlan) {
     }
     ctx.touch(t);
     ctx.touch(t2);
+    if let Some([q1, q2]) = plan.q {
+        // `check` evaluated exactly these triangles, `(c, a, d)` and `(d, b, c)`, with `Ctx::q`.
+        ctx.set_q(t, q1);
+        ctx.set_q(t2, q2);
+    }
 }
 
 /// One flip sweep over the interior edges next to triangles modified since the last sweep, in
@@ -137,9 +149,11 @@ pub fn pass(ctx: &mut Ctx) -> usize {
                 continue;
             }
             let plan = match &pre {
-                Some(pre) if unchanged => {
-                    (pre[k] >> i & 1 == 1).then_some(FlipPlan { t, i: i as u8 })
-                }
+                Some(pre) if unchanged => (pre[k] >> i & 1 == 1).then_some(FlipPlan {
+                    t,
+                    i: i as u8,
+                    q: None,
+                }),
                 _ => check(ctx, t, i),
             };
             if let Some(plan) = plan {

@@ -242,8 +242,14 @@ impl<'a> Ctx<'a> {
     #[inline]
     pub(crate) fn set_fast_q(&mut self, t: u32, q: f64) {
         if self.fast_q {
-            *self.tq[t as usize].get_mut() = q.to_bits();
+            self.set_q(t, q);
         }
+    }
+
+    /// Caches `q`, which must be [`Ctx::q`] of the live triangle `t` as it is now.
+    #[inline]
+    pub(crate) fn set_q(&mut self, t: u32, q: f64) {
+        *self.tq[t as usize].get_mut() = q.to_bits();
     }
 
     /// `Q_ani` of the triangle `(a, b, c)` where vertex `v` is put at `pv` with log-metric `lv`.
@@ -363,7 +369,14 @@ impl<'a> Ctx<'a> {
         self.vmod = scatter(&self.vmod, &vmap, nv, 0);
         self.tstamp = scatter(&self.tstamp, &tmap, nt, 0);
         self.tseen = vec![0; nt];
-        self.tq = unknown_qualities(nt);
+        // Known qualities stay known: the triangles are the same, only their indices change.
+        let mut tq = unknown_qualities(nt);
+        for (old, &new) in tmap.iter().enumerate() {
+            if new != NONE {
+                *tq[new as usize].get_mut() = *self.tq[old].get_mut();
+            }
+        }
+        self.tq = tq;
         // Keep the log entries some pass has not consumed yet, renumbered.
         let lo = self.split_pos.min(self.flip_pos);
         let mut kept = Vec::with_capacity(self.log.len() - lo);
