@@ -2,6 +2,7 @@
 //! compaction. Nothing here reads coordinates.
 
 use super::{next, prev, Mesh2, NONE};
+use rayon::prelude::*;
 
 impl Mesh2 {
     /// Local index (0..3) of vertex `v` in triangle `t`, if it is a corner of it.
@@ -306,8 +307,9 @@ impl Mesh2 {
         for (new, &old) in torder.iter().enumerate() {
             tmap[old as usize] = new as u32;
         }
-        fn gather<T: Copy>(v: &[T], order: &[u32]) -> Vec<T> {
-            order.iter().map(|&o| v[o as usize]).collect()
+        // Gathers in parallel (rayon): the result does not depend on the thread count.
+        fn gather<T: Copy + Send + Sync>(v: &[T], order: &[u32]) -> Vec<T> {
+            order.par_iter().map(|&o| v[o as usize]).collect()
         }
         self.points = gather(&self.points, vorder);
         self.vert_ref = gather(&self.vert_ref, vorder);
@@ -315,11 +317,11 @@ impl Mesh2 {
         self.required = gather(&self.required, vorder);
         let remap_t = |t: u32| if t == NONE { NONE } else { tmap[t as usize] };
         self.tris = torder
-            .iter()
+            .par_iter()
             .map(|&t| self.tris[t as usize].map(|v| vmap[v as usize]))
             .collect();
         self.neighbours = torder
-            .iter()
+            .par_iter()
             .map(|&t| self.neighbours[t as usize].map(remap_t))
             .collect();
         self.tri_ref = gather(&self.tri_ref, torder);
