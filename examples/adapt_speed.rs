@@ -3,7 +3,8 @@
 //! `anisomesh adapt --input BG.mesh --sol M.sol` reads, written by
 //! [`anisomesh::bench::peers::write_speed_case`]), adapted by [`anisomesh::adapt::adapt`] with the
 //! metric interpolated at new vertices with sizes varying linearly, as mmg2d does with the same
-//! files (`ANISOMESH_LOG_INTERP=1`: log-Euclidean, which gives many more vertices). Prints the output size,
+//! files (`ANISOMESH_LOG_INTERP=1`: log-Euclidean, which gives many more vertices;
+//! `ANISOMESH_HGRAD=1.3`: the metric graded during the adaptation, as mmg2d's default `-hgrad`). Prints the output size,
 //! the time per operator and the vertices per second for each `eps`.
 //!
 //! Usage: `cargo run --release --example adapt_speed -- [eps ...]` (default 1e-3 1e-4 3e-5 1e-5;
@@ -48,7 +49,11 @@ fn main() -> anisomesh::Result<()> {
         } else {
             MetricInterpolation::LinearSizes
         };
-        let opts = metric_file_options().interpolation(interp);
+        // `ANISOMESH_HGRAD=1.3`: grade the metric during the adaptation (as mmg2d -hgrad 1.3).
+        let hgrad = std::env::var("ANISOMESH_HGRAD")
+            .ok()
+            .and_then(|s| s.parse().ok());
+        let opts = metric_file_options().interpolation(interp).gradation(hgrad);
         let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts)?;
         let secs = t0.elapsed().as_secs_f64();
         let q = quality_stats(&mesh, &metric);
@@ -63,7 +68,10 @@ fn main() -> anisomesh::Result<()> {
             q.q_ani_mean,
             q.q_ani_max
         );
-        println!("    cycles {} converged {}", rep.cycles, rep.converged);
+        println!(
+            "    cycles {} converged {} gradation {:.2} s",
+            rep.cycles, rep.converged, rep.gradation_seconds
+        );
         if std::env::var_os("ANISOMESH_PASSES").is_some() {
             for p in &rep.passes {
                 println!("      {:?} {} {:.3}", p.kind, p.count, p.seconds);

@@ -208,6 +208,44 @@ fn adapt_conforms_to_a_metric_file_and_to_a_level_set_file() {
         ]),
         "vertices",
     );
+    // --hgrad grades a metric file during the adaptation; a level set or a factor <= 1 is refused.
+    let out = anisomesh(&[
+        "adapt",
+        "--input",
+        "meshes/square.mesh",
+        "--sol",
+        "meshes/square_metric.sol",
+        "--hgrad",
+        "1.3",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    assert!(text.contains("graded with factor 1.3"), "{text}");
+    for (sol, factor, needle) in [
+        ("meshes/square_levelset.sol", "1.3", "level set"),
+        ("meshes/square_metric.sol", "0.9", "gradation"),
+    ] {
+        assert_clean_error(
+            &anisomesh(&[
+                "adapt",
+                "--input",
+                "meshes/square.mesh",
+                "--sol",
+                sol,
+                "--hgrad",
+                factor,
+                "-o",
+                dir.to_str().unwrap(),
+            ]),
+            needle,
+        );
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

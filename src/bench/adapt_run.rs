@@ -61,6 +61,9 @@ pub struct AdaptRunOptions {
     pub name: String,
     /// Whether to draw the PNG.
     pub picture: bool,
+    /// For a metric read from a file: grade it during the adaptation with this growth factor
+    /// ([`crate::adapt::AdaptOptions::gradation`], mmg2d's `-hgrad`); `None` (default): as given.
+    pub hgrad: Option<f64>,
 }
 
 impl Default for AdaptRunOptions {
@@ -74,6 +77,7 @@ impl Default for AdaptRunOptions {
             out_dir: PathBuf::from("out"),
             name: "zalesak".into(),
             picture: true,
+            hgrad: None,
         }
     }
 }
@@ -166,7 +170,7 @@ pub fn run(input: AdaptInput, opts: &AdaptRunOptions) -> Result<AdaptRunReport> 
                 &mut metric,
                 &mut [],
                 None,
-                &metric_file_options(),
+                &metric_file_options().gradation(opts.hgrad),
             )?;
             (
                 mesh,
@@ -174,7 +178,10 @@ pub fn run(input: AdaptInput, opts: &AdaptRunOptions) -> Result<AdaptRunReport> 
                 None,
                 None,
                 rep,
-                "metric read from file".to_string(),
+                match opts.hgrad {
+                    Some(b) => format!("metric read from file, graded with factor {b}"),
+                    None => "metric read from file".to_string(),
+                },
             )
         }
     };

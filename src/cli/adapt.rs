@@ -41,6 +41,10 @@ pub struct AdaptArgs {
     /// Isotropic version of the metric (for comparison).
     #[arg(long)]
     iso: bool,
+    /// With --sol holding a metric: grade it during the adaptation with this growth factor
+    /// (> 1; as mmg2d's -hgrad, e.g. 1.3). Default: the metric as given.
+    #[arg(long, requires = "sol")]
+    hgrad: Option<f64>,
     /// Output directory.
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -68,6 +72,7 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         hmax: a.hmax,
         target_vertices: a.target_vertices,
         iso: a.iso,
+        hgrad: a.hgrad,
         out_dir: a.output.clone(),
         ..AdaptRunOptions::default()
     };
@@ -79,6 +84,12 @@ pub fn run(a: AdaptArgs) -> Result<()> {
             .map(|s| format!("{}_adapted", s.to_string_lossy()))
             .unwrap_or_else(|| "adapted".into());
         match sol.fields.into_iter().next() {
+            Some(SolField::Scalar(_)) if a.hgrad.is_some() => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: --hgrad grades a metric; this file holds a scalar level set",
+                    sol_path.display()
+                )))
+            }
             Some(SolField::Scalar(u)) => AdaptInput::LevelSet { mesh, u },
             Some(SolField::Tensor2(metric)) => AdaptInput::Metric { mesh, metric },
             _ => {
