@@ -11,13 +11,13 @@ use rayon::prelude::*;
 /// Relative improvement of the worse quality a flip must bring (avoids cycling).
 const GAIN: f64 = 0.99;
 
-/// A planned flip of local edge `i` of triangle `t`, with the qualities of the two new
-/// triangles when the check computed them (`apply` caches them).
+/// A planned flip of local edge `i` of triangle `t`, made by [`check`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlipPlan {
     pub t: u32,
     pub i: u8,
-    pub q: Option<[f64; 2]>,
+    /// The qualities of the two new triangles when `check` computed them (`apply` caches them).
+    pub(crate) q: Option<[f64; 2]>,
 }
 
 /// Pure check: whether flipping edge `(t, i)` is valid (convex quadrilateral, unlabelled interior

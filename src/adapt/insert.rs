@@ -31,8 +31,8 @@ pub struct InsertPlan {
     pub cavity: Vec<u32>,
     pub boundary: Vec<(u32, u32, u32, u8, i32)>,
     /// `Q_ani` of the star triangle on each boundary edge in the arithmetic-mean element metric
-    /// (what [`Ctx::q`] computes by default, so `apply` caches it).
-    pub q_star: Vec<f64>,
+    /// (the operators' default quality, so `apply` caches it; set only by `check`).
+    pub(crate) q_star: Vec<f64>,
 }
 
 /// Upper-triangular `L` with `M = Lᵀ L`: `x -> L x` maps to the metric-space coordinates.

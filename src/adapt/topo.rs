@@ -246,9 +246,11 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// Caches `q`, which must be [`Ctx::q`] of the live triangle `t` as it is now.
+    /// Caches `q`, which must be [`Ctx::q`] of the live triangle `t` as it is now (checked in
+    /// debug builds; `cached_qualities_are_exact` checks it in release).
     #[inline]
     pub(crate) fn set_q(&mut self, t: u32, q: f64) {
+        debug_assert_eq!(q.to_bits(), self.q(self.mesh.tris[t as usize]).to_bits());
         *self.tq[t as usize].get_mut() = q.to_bits();
     }
 
@@ -352,8 +354,8 @@ impl<'a> Ctx<'a> {
     }
 
     /// Drops deleted triangles and unused vertices and renumbers the rest along a space-filling
-    /// curve ([`Mesh2::compact_spatial`]), carrying the metric, fields and stamps along: the
-    /// operators' fan walks then touch memory that is close together.
+    /// curve ([`Mesh2::compact_spatial`]), carrying the metric, fields, stamps and cached
+    /// qualities along: the operators' fan walks then touch memory that is close together.
     pub(crate) fn renumber_spatially(&mut self) {
         let (vmap, tmap) = self.mesh.compact_spatial();
         let nv = self.mesh.n_points();
@@ -521,5 +523,68 @@ pub(crate) fn local(tri: [u32; 3], v: u32) -> usize {
         1
     } else {
         2
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::adapt::{collapse, flip, smooth, split};
+    use crate::mesh::GridPattern;
+
+    /// Every quality the operators cached (computed by a check and stored on apply, or carried
+    /// through a renumbering) is bit-equal to a fresh [`Ctx::q`], in both quality modes.
+    #[test]
+    fn cached_qualities_are_exact() {
+        for exact in [false, true] {
+            let mut mesh =
+                Mesh2::rectangle(DVec2::ZERO, DVec2::ONE, 9, 9, GridPattern::default()).unwrap();
+            let mut metric: Vec<Sym2> = mesh
+                .points
+                .iter()
+                .map(|p| {
+                    let d = (p.y - 0.4 - 0.3 * p.x * p.x).abs();
+                    Sym2::from_sizes([0.08, 0.004 + 0.5 * d], DVec2::new(1.0, 0.6 * p.x))
+                })
+                .collect();
+            let mut fields: Vec<Vec<f64>> = Vec::new();
+            let params = OpParams {
+                l_min: std::f64::consts::FRAC_1_SQRT_2,
+                l_max: std::f64::consts::SQRT_2,
+                q_max: 5.0,
+                curve_tol: 0.0,
+                insertion: true,
+                interpolation: MetricInterpolation::LinearSizes,
+            };
+            let mut ctx = Ctx::new(&mut mesh, &mut metric, &mut fields, None, params);
+            if exact {
+                ctx = ctx.exact_quality();
+            }
+            let (mut cand, mut ops) = (Vec::new(), 0);
+            for round in 0..12 {
+                ops += split::pass(&mut ctx, &mut cand) + flip::pass(&mut ctx);
+                if round % 3 == 2 {
+                    ops += collapse::pass(&mut ctx) + smooth::pass(&mut ctx);
+                    ctx.renumber_spatially();
+                }
+            }
+            assert!(ops > 500, "too little work to test: {ops} operations");
+            let mut known = 0;
+            for t in 0..ctx.mesh.n_tris() {
+                let q = f64::from_bits(ctx.tq[t].load(Relaxed));
+                if ctx.mesh.is_deleted(t) || q.is_nan() {
+                    continue;
+                }
+                known += 1;
+                let fresh = ctx.q(ctx.mesh.tris[t]);
+                assert_eq!(
+                    q.to_bits(),
+                    fresh.to_bits(),
+                    "exact {exact}, tri {t}: {q} vs {fresh}"
+                );
+            }
+            assert!(known > ctx.mesh.n_tris() / 2, "only {known} cached");
+            ctx.mesh.check().unwrap();
+        }
     }
 }

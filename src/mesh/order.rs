@@ -161,7 +161,7 @@ mod tests {
 
     #[test]
     fn radix_sort_orders_by_the_high_word_and_keeps_ties_in_order() {
-        // A pseudo-random sequence with many equal high words (few distinct cells).
+        // A pseudo-random sequence of high words (almost all distinct).
         let mut x: u64 = 0x2545_f491_4f6c_dd1d;
         let keys: Vec<u64> = (0..20_000u64)
             .map(|i| {
@@ -175,6 +175,11 @@ mod tests {
         expect.sort_unstable();
         assert_eq!(radix_sort_high_word(keys), expect);
         assert!(radix_sort_high_word(Vec::new()).is_empty());
+        // Few cells (many ties) and high digits equal for every key (skipped passes).
+        let keys: Vec<u64> = (0..5_000u64).map(|i| ((i * 7919) % 13) << 32 | i).collect();
+        let mut expect = keys.clone();
+        expect.sort_unstable();
+        assert_eq!(radix_sort_high_word(keys), expect);
     }
 
     #[test]

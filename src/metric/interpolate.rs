@@ -75,8 +75,10 @@ pub fn lerp_sizes(a: &Sym2, b: &Sym2, t: f64) -> Sym2 {
 
 /// `(a^{1/2}, a^{-1/2})` of a 2x2 SPD tensor in closed form, without an eigen-decomposition: with
 /// `s = sqrt(det a)` and `r = sqrt(tr a + 2 s)`, `a^{1/2} = (a + s I) / r` (Cayley–Hamilton) and
-/// its inverse is the adjugate of `a + s I` divided by `r s`. Every sum adds positive terms, so
-/// both stay accurate at high anisotropy.
+/// its inverse is the adjugate of `a + s I` divided by `r s`. The sums add positive terms; the
+/// accuracy is that of `det a`, whose cancellation gives a relative error of about `1e-16 κ` for
+/// an eigenvalue ratio `κ` (1e-9 at `κ` = 4e8) — the same as the eigen-decomposition, which
+/// takes the small eigenvalue as `det / λ_max`.
 #[inline]
 fn sqrt_and_inverse_sqrt(a: &Sym2) -> (Sym2, Sym2) {
     let s = a.det().sqrt();
