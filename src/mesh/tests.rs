@@ -63,6 +63,42 @@ fn rings_fans_and_loops() {
 }
 
 #[test]
+fn v2v_lists_each_ring_once_sorted_and_skips_deleted_triangles() {
+    let mut m = unit_square(7, GridPattern::UnionJack);
+    // Tombstones and an unused vertex, as the adaptation leaves them.
+    for t in [3, 17, 40] {
+        m.tris[t] = [NONE; 3];
+    }
+    m.points.push(DVec2::new(2.0, 2.0));
+    let (off, adj) = m.v2v();
+    assert_eq!(off.len(), m.n_points() + 1);
+    // Reference: every directed edge of a live triangle, sorted, deduplicated.
+    let mut pairs = Vec::new();
+    for t in m.live_tris() {
+        let tri = m.tris[t];
+        for i in 0..3 {
+            pairs.push((tri[i], tri[next(i)]));
+            pairs.push((tri[next(i)], tri[i]));
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    let mut got = Vec::new();
+    for v in 0..m.n_points() {
+        for &w in &adj[off[v]..off[v + 1]] {
+            got.push((v as u32, w));
+        }
+    }
+    assert_eq!(got, pairs);
+    let last = m.n_points() - 1;
+    assert_eq!(
+        off[last],
+        off[last + 1],
+        "an unused vertex has an empty ring"
+    );
+}
+
+#[test]
 fn locate_inside_and_outside() {
     let m = unit_square(10, GridPattern::UnionJack);
     for &(x, y) in &[

@@ -192,26 +192,48 @@ impl Mesh2 {
     /// Vertex-to-vertex adjacency of the whole mesh in compressed form: `(offsets, neighbours)`,
     /// the ring of `v` being `neighbours[offsets[v]..offsets[v+1]]` (sorted ascending).
     pub fn v2v(&self) -> (Vec<usize>, Vec<u32>) {
+        // Bucket the directed edges of the live triangles by their first vertex (each interior
+        // edge arrives twice), then sort and deduplicate each ring in place and close the gaps.
         let n = self.points.len();
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(6 * self.tris.len());
+        let mut start = vec![0usize; n + 1];
+        for t in self.live_tris() {
+            for &v in &self.tris[t] {
+                start[v as usize + 1] += 2;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut ring = vec![0u32; start[n]];
         for t in self.live_tris() {
             let tri = self.tris[t];
             for i in 0..3 {
                 let (a, b) = (tri[i], tri[next(i)]);
-                pairs.push((a, b));
-                pairs.push((b, a));
+                ring[fill[a as usize]] = b;
+                fill[a as usize] += 1;
+                ring[fill[b as usize]] = a;
+                fill[b as usize] += 1;
             }
         }
-        pairs.sort_unstable();
-        pairs.dedup();
         let mut offsets = vec![0usize; n + 1];
-        for &(a, _) in &pairs {
-            offsets[a as usize + 1] += 1;
-        }
+        let mut len = 0;
         for v in 0..n {
-            offsets[v + 1] += offsets[v];
+            let (lo, hi) = (start[v], start[v + 1]);
+            ring[lo..hi].sort_unstable();
+            let mut prev_w = NONE;
+            for k in lo..hi {
+                let w = ring[k];
+                if w != prev_w {
+                    ring[len] = w;
+                    len += 1;
+                    prev_w = w;
+                }
+            }
+            offsets[v + 1] = len;
         }
-        (offsets, pairs.into_iter().map(|(_, b)| b).collect())
+        ring.truncate(len);
+        (offsets, ring)
     }
 
     /// The unique edges `(a, b)` with `a < b`, each with one triangle and local index holding it.
