@@ -12,8 +12,7 @@
 
 use anisomesh::adapt::{adapt, MetricInterpolation, PassKind};
 use anisomesh::bench::adapt_run::metric_file_options;
-use anisomesh::bench::peers::write_speed_case;
-use anisomesh::io;
+use anisomesh::bench::peers::{read_mesh_and_metric, write_speed_case};
 use anisomesh::metric::quality_stats;
 use std::time::Instant;
 
@@ -36,11 +35,7 @@ fn main() -> anisomesh::Result<()> {
     );
     for e in eps {
         let (bg, sol) = write_speed_case(&dir, 100, e)?;
-        let mut mesh = io::read_medit2(&bg)?;
-        let mut metric = match io::read_sol_for(&sol, mesh.n_points())?.fields.pop() {
-            Some(io::SolField::Tensor2(m)) => m,
-            _ => unreachable!("write_speed_case writes one tensor field"),
-        };
+        let (mut mesh, mut metric) = read_mesh_and_metric(&bg, &sol)?;
         let t0 = Instant::now();
         // As `anisomesh adapt --input BG.mesh --sol M.sol` (and mmg2d): sizes interpolated
         // linearly between the background vertices; `ANISOMESH_LOG_INTERP=1`: log-Euclidean.

@@ -25,7 +25,7 @@ use anisomesh::bench::peers::{
     self, find_program, measure, run_with_timeout, speed_case_metric, sweep, write_csv, PeerKind,
     PeerOptions, PeerResult,
 };
-use anisomesh::io::{self, SolField};
+use anisomesh::io;
 use std::path::PathBuf;
 use std::process::Command;
 use std::time::{Duration, Instant};
@@ -108,19 +108,7 @@ fn speed_case(out: &std::path::Path, n: usize, eps: f64) -> anisomesh::Result<Ve
     std::thread::spawn(move || {
         let go = || -> anisomesh::Result<PeerResult> {
             let t0 = Instant::now();
-            let mut mesh = io::read_mesh(&bg2)?;
-            let mut metric = match io::read_sol_for(&sol2, mesh.n_points())?
-                .fields
-                .into_iter()
-                .next()
-            {
-                Some(SolField::Tensor2(m)) => m,
-                _ => {
-                    return Err(anisomesh::Error::InvalidInput(
-                        "M.sol: not a 2D metric".into(),
-                    ))
-                }
-            };
+            let (mut mesh, mut metric) = peers::read_mesh_and_metric(&bg2, &sol2)?;
             let opts = anisomesh::bench::adapt_run::metric_file_options();
             let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts)?;
             let s = t0.elapsed().as_secs_f64();

@@ -510,19 +510,14 @@ fn touched_cycle_smoothing_conforms_with_fewer_moves() {
 fn gradation_during_adaptation_removes_the_jumps_of_a_coarse_background_metric() {
     use anisomesh::adapt::adapt;
     use anisomesh::bench::adapt_run::metric_file_options;
-    use anisomesh::bench::peers::write_speed_case;
-    use anisomesh::io::{read_medit2, read_sol_for, SolField};
+    use anisomesh::bench::peers::{read_mesh_and_metric, write_speed_case};
     // The speed case of issue 3 at eps 3e-4: the eq. (6) Zalesak metric given on a 100 x 100
     // grid of [-2, 2]^2, whose normal size goes from 3e-4 to 0.2 within one grid cell.
     let dir = std::env::temp_dir().join(format!("anisomesh_hgrad_{}", std::process::id()));
     let (bg, sol) = write_speed_case(&dir, 100, 3e-4).unwrap();
     let mut results = Vec::new();
     for hgrad in [None, Some(1.3)] {
-        let mut mesh = read_medit2(&bg).unwrap();
-        let mut metric = match read_sol_for(&sol, mesh.n_points()).unwrap().fields.pop() {
-            Some(SolField::Tensor2(m)) => m,
-            other => panic!("expected a metric, got {other:?}"),
-        };
+        let (mut mesh, mut metric) = read_mesh_and_metric(&bg, &sol).unwrap();
         let opts = metric_file_options().gradation(hgrad);
         let rep = adapt(&mut mesh, &mut metric, &mut [], None, &opts).unwrap();
         mesh.check().unwrap();

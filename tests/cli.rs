@@ -173,24 +173,27 @@ fn default_adapt_run_meets_the_issue_targets() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `anisomesh adapt --input MESH --sol SOL [extra ...] -o DIR`.
+fn adapt_with_sol(mesh: &str, sol: &str, extra: &[&str], dir: &Path) -> Output {
+    let mut args = vec!["adapt", "--input", mesh, "--sol", sol];
+    args.extend_from_slice(extra);
+    args.extend(["-o", dir.to_str().unwrap()]);
+    anisomesh(&args)
+}
+
+fn assert_success(out: &Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 #[test]
 fn adapt_conforms_to_a_metric_file_and_to_a_level_set_file() {
     let dir = std::env::temp_dir().join(format!("anisomesh-adapt-sol-{}", std::process::id()));
     for sol in ["meshes/square_metric.sol", "meshes/square_levelset.sol"] {
-        let out = anisomesh(&[
-            "adapt",
-            "--input",
-            "meshes/square.mesh",
-            "--sol",
-            sol,
-            "-o",
-            dir.to_str().unwrap(),
-        ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&adapt_with_sol("meshes/square.mesh", sol, &[], &dir));
         let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
         let r: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert!(
@@ -199,52 +202,30 @@ fn adapt_conforms_to_a_metric_file_and_to_a_level_set_file() {
         );
     }
     assert_clean_error(
-        &anisomesh(&[
-            "adapt",
-            "--input",
+        &adapt_with_sol(
             "meshes/square_hole.mesh",
-            "--sol",
             "meshes/square_metric.sol",
-        ]),
+            &[],
+            &dir,
+        ),
         "vertices",
     );
     // --hgrad grades a metric file during the adaptation; a level set or a factor <= 1 is refused.
-    let out = anisomesh(&[
-        "adapt",
-        "--input",
+    let graded = ["--hgrad", "1.3"];
+    assert_success(&adapt_with_sol(
         "meshes/square.mesh",
-        "--sol",
         "meshes/square_metric.sol",
-        "--hgrad",
-        "1.3",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+        &graded,
+        &dir,
+    ));
     let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
     assert!(text.contains("graded with factor 1.3"), "{text}");
     for (sol, factor, needle) in [
         ("meshes/square_levelset.sol", "1.3", "level set"),
         ("meshes/square_metric.sol", "0.9", "gradation"),
     ] {
-        assert_clean_error(
-            &anisomesh(&[
-                "adapt",
-                "--input",
-                "meshes/square.mesh",
-                "--sol",
-                sol,
-                "--hgrad",
-                factor,
-                "-o",
-                dir.to_str().unwrap(),
-            ]),
-            needle,
-        );
+        let out = adapt_with_sol("meshes/square.mesh", sol, &["--hgrad", factor], &dir);
+        assert_clean_error(&out, needle);
     }
     std::fs::remove_dir_all(&dir).ok();
 }

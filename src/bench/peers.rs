@@ -743,6 +743,24 @@ pub fn write_speed_case(dir: &Path, n: usize, eps: f64) -> Result<(PathBuf, Path
     Ok((mp, sp))
 }
 
+/// Reads a mesh and the metric given at its vertices (the files of [`write_speed_case`], or any
+/// `--input`/`--sol` pair holding a 2D metric). Errors: unreadable files, a `.sol` whose first
+/// field is not a symmetric 2x2 tensor field (named).
+pub fn read_mesh_and_metric(mesh: &Path, sol: &Path) -> Result<(Mesh2, Vec<Sym2>)> {
+    let mesh_data = io::read_mesh(mesh)?;
+    match io::read_sol_for(sol, mesh_data.n_points())?
+        .fields
+        .into_iter()
+        .next()
+    {
+        Some(io::SolField::Tensor2(metric)) => Ok((mesh_data, metric)),
+        _ => Err(Error::InvalidInput(format!(
+            "{}: expected a 2D metric (symmetric tensor) field",
+            sol.display()
+        ))),
+    }
+}
+
 /// The metric parameters of [`write_speed_case`].
 pub fn speed_case_metric(n: usize, eps: f64) -> LevelSetMetric {
     LevelSetMetric {
