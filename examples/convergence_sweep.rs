@@ -22,9 +22,15 @@
 //! against the isotropic graded mesh with the same smallest size and gradation, for a few band
 //! widths and growth rates ([`anisomesh::bench::convergence_claim`]); quick: `ε = 1e-2`, two
 //! settings.
+//!
+//! `--best-vs-best` runs instead both families over their free parameters (`ε`, normal size and
+//! band of eq. (6); isotropic size and band) and compares the Pareto fronts at equal error
+//! ([`anisomesh::bench::convergence_fronts`]), writing `fronts_<shape>.{csv,png}`; quick: 8
+//! meshes.
 
 use anisomesh::bench::convergence::{run, ConvergenceOptions};
 use anisomesh::bench::convergence_claim::{claim_table, paper_claim, CLAIM_SETTINGS};
+use anisomesh::bench::convergence_fronts::{self, FrontGrid};
 use std::path::PathBuf;
 
 fn main() -> anisomesh::Result<()> {
@@ -34,6 +40,7 @@ fn main() -> anisomesh::Result<()> {
     let mut out: Option<PathBuf> = None;
     let mut peers = true;
     let mut claim = false;
+    let mut fronts = false;
     let d = ConvergenceOptions::default();
     let (mut kink_scale, mut band_hmin, mut grade) = (d.kink_scale, d.band_hmin, d.grade);
     let num = |v: Option<&String>| v.and_then(|s| s.parse::<f64>().ok());
@@ -43,6 +50,7 @@ fn main() -> anisomesh::Result<()> {
             "--out" => out = it.next().map(PathBuf::from),
             "--no-peers" => peers = false,
             "--paper-claim" => claim = true,
+            "--best-vs-best" => fronts = true,
             "--kink" => kink_scale = num(it.next()),
             "--band" => band_hmin = num(it.next()),
             "--grade" => grade = num(it.next()),
@@ -62,7 +70,6 @@ fn main() -> anisomesh::Result<()> {
         print!("{}", claim_table(&paper_claim(&shape, eps, settings)?));
         return Ok(());
     }
-    let points = positional.get(1).and_then(|s| s.parse().ok()).unwrap_or(5);
     let out_dir = match (quick, out) {
         (true, _) => {
             std::env::temp_dir().join(format!("anisomesh-convergence-{}", std::process::id()))
@@ -70,6 +77,20 @@ fn main() -> anisomesh::Result<()> {
         (false, Some(d)) => d,
         (false, None) => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/convergence"),
     };
+    if fronts {
+        let grid = if quick {
+            FrontGrid::quick()
+        } else {
+            FrontGrid::full()
+        };
+        let report = convergence_fronts::run(&shape, &grid, Some(&out_dir))?;
+        print!("{}", report.table());
+        for f in &report.files {
+            println!("wrote {}", f.display());
+        }
+        return Ok(());
+    }
+    let points = positional.get(1).and_then(|s| s.parse().ok()).unwrap_or(5);
     let report = run(&ConvergenceOptions {
         shape,
         out_dir: Some(out_dir),

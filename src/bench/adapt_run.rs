@@ -52,6 +52,9 @@ pub struct AdaptRunOptions {
     pub eps: f64,
     pub hmin: f64,
     pub hmax: f64,
+    /// Half-width of the band around the zero level where eq. (6) applies; `None` (default):
+    /// `5 ε`.
+    pub band: Option<f64>,
     /// Use the multiscale Hessian metric with this many target vertices instead of eq. (6).
     pub target_vertices: Option<usize>,
     /// Isotropic variant of the chosen metric.
@@ -72,6 +75,7 @@ impl Default for AdaptRunOptions {
             eps: LevelSetMetric::default().eps,
             hmin: 1e-3,
             hmax: 0.2,
+            band: None,
             target_vertices: None,
             iso: false,
             out_dir: PathBuf::from("out"),
@@ -113,8 +117,8 @@ fn level_set_metric(opts: &AdaptRunOptions) -> LevelSetMetric {
         eps: opts.eps,
         hmin: opts.hmin,
         hmax: opts.hmax,
-        // The band of eq. (6) scales with eps (the default is 5 eps).
-        band: d.band / d.eps * opts.eps,
+        // By default the band of eq. (6) scales with eps (5 eps).
+        band: opts.band.unwrap_or(d.band / d.eps * opts.eps),
         isotropic: opts.iso,
         ..d
     }
@@ -136,6 +140,11 @@ pub fn run(input: AdaptInput, opts: &AdaptRunOptions) -> Result<AdaptRunReport> 
         return Err(Error::InvalidInput(format!(
             "need eps > 0 and 0 < hmin <= hmax (got eps {}, hmin {}, hmax {})",
             opts.eps, opts.hmin, opts.hmax
+        )));
+    }
+    if let Some(b) = opts.band.filter(|b| !(b.is_finite() && *b > 0.0)) {
+        return Err(Error::InvalidInput(format!(
+            "need a finite band half-width > 0 (got {b})"
         )));
     }
     let t0 = std::time::Instant::now();

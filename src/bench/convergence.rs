@@ -156,10 +156,11 @@ pub struct FamilyFit {
     pub area_slope: f64,
 }
 
-/// Vertex counts at one common Hausdorff error.
+/// Vertex counts of the two families at one common error (Hausdorff distance or relative area
+/// error, as the list holding it says).
 #[derive(Debug, Clone, Serialize)]
 pub struct GainPoint {
-    pub hausdorff: f64,
+    pub error: f64,
     pub anisotropic_vertices: f64,
     pub isotropic_vertices: f64,
     pub ratio: f64,
@@ -258,7 +259,7 @@ impl ConvergenceReport {
         for g in &self.gain.at_equal_error {
             s += &format!(
                 "equal error {:.3e}: isotropic {:.0} / anisotropic {:.0} vertices = {:.2}\n",
-                g.hausdorff, g.isotropic_vertices, g.anisotropic_vertices, g.ratio
+                g.error, g.isotropic_vertices, g.anisotropic_vertices, g.ratio
             );
         }
         match self.gain.median_at_equal_error {
@@ -724,6 +725,41 @@ pub fn vertices_at_error(points: &[(f64, f64)], e: f64) -> Option<f64> {
     None
 }
 
+/// Isotropic over anisotropic vertex counts at equal error, from `(vertices, error)` points of
+/// each family: at every anisotropic error inside the isotropic range (the isotropic count
+/// interpolated by [`vertices_at_error`]) and at every isotropic error inside the anisotropic
+/// range; sorted by decreasing error.
+pub fn equal_error_ratios(ani: &[(f64, f64)], iso: &[(f64, f64)]) -> Vec<GainPoint> {
+    let point = |error: f64, anisotropic_vertices: f64, isotropic_vertices: f64| GainPoint {
+        error,
+        anisotropic_vertices,
+        isotropic_vertices,
+        ratio: isotropic_vertices / anisotropic_vertices,
+    };
+    let mut out: Vec<GainPoint> = ani
+        .iter()
+        .filter_map(|&(na, e)| vertices_at_error(iso, e).map(|ni| point(e, na, ni)))
+        .chain(
+            iso.iter()
+                .filter_map(|&(ni, e)| vertices_at_error(ani, e).map(|na| point(e, na, ni))),
+        )
+        .collect();
+    out.sort_by(|a, b| b.error.total_cmp(&a.error));
+    out
+}
+
+/// The median ratio of `points` (the geometric mean of the middle two for an even count; `None`
+/// for no point).
+pub fn median_ratio(points: &[GainPoint]) -> Option<f64> {
+    let mut r: Vec<f64> = points.iter().map(|g| g.ratio).collect();
+    r.sort_by(f64::total_cmp);
+    match r.len() {
+        0 => None,
+        n if n % 2 == 1 => Some(r[n / 2]),
+        n => Some((r[n / 2 - 1] * r[n / 2]).sqrt()),
+    }
+}
+
 /// The gain of anisotropy over the rows (see [`AnisotropyGain`]).
 pub fn anisotropy_gain(rows: &[ConvergenceRow]) -> AnisotropyGain {
     let pts = |f: Family, err: fn(&ConvergenceRow) -> f64| -> Vec<(f64, f64)> {
@@ -740,46 +776,12 @@ pub fn anisotropy_gain(rows: &[ConvergenceRow]) -> AnisotropyGain {
         pts(Family::Anisotropic, |r| r.area_rel_error),
         pts(Family::Isotropic, |r| r.area_rel_error),
     );
-    let mut at_equal_area_error: Vec<(f64, f64)> = ani_area
-        .iter()
-        .filter_map(|&(na, e)| vertices_at_error(&iso_area, e).map(|ni| (e, ni / na)))
-        .chain(
-            iso_area
-                .iter()
-                .filter_map(|&(ni, e)| vertices_at_error(&ani_area, e).map(|na| (e, ni / na))),
-        )
+    let at_equal_area_error = equal_error_ratios(&ani_area, &iso_area)
+        .into_iter()
+        .map(|g| (g.error, g.ratio))
         .collect();
-    at_equal_area_error.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let mut at_equal_error = Vec::new();
-    for &(na, e) in &ani {
-        if let Some(ni) = vertices_at_error(&iso, e) {
-            at_equal_error.push(GainPoint {
-                hausdorff: e,
-                anisotropic_vertices: na,
-                isotropic_vertices: ni,
-                ratio: ni / na,
-            });
-        }
-    }
-    // The isotropic points inside the anisotropic range, too.
-    for &(ni, e) in &iso {
-        if let Some(na) = vertices_at_error(&ani, e) {
-            at_equal_error.push(GainPoint {
-                hausdorff: e,
-                anisotropic_vertices: na,
-                isotropic_vertices: ni,
-                ratio: ni / na,
-            });
-        }
-    }
-    at_equal_error.sort_by(|a, b| b.hausdorff.total_cmp(&a.hausdorff));
-    let mut ratios: Vec<f64> = at_equal_error.iter().map(|g| g.ratio).collect();
-    ratios.sort_by(f64::total_cmp);
-    let median_at_equal_error = match ratios.len() {
-        0 => None,
-        n if n % 2 == 1 => Some(ratios[n / 2]),
-        n => Some((ratios[n / 2 - 1] * ratios[n / 2]).sqrt()),
-    };
+    let at_equal_error = equal_error_ratios(&ani, &iso);
+    let median_at_equal_error = median_ratio(&at_equal_error);
     let at_equal_eps = rows
         .iter()
         .filter(|r| r.family == Family::Anisotropic)

@@ -234,7 +234,7 @@ fn gain_panel(report: &ConvergenceReport) -> LogLogPlot {
     let interp: Vec<(f64, f64)> = g
         .at_equal_error
         .iter()
-        .map(|p| (p.hausdorff, p.ratio))
+        .map(|p| (p.error, p.ratio))
         .collect();
     let mut fitted = g.fitted.clone();
     fitted.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -308,18 +308,5 @@ pub fn figure(report: &ConvergenceReport) -> Result<RgbImage> {
     if gp.series.iter().any(|s| !s.points.is_empty()) {
         panels.push(loglog_rgb(&gp)?);
     }
-    let width = panels.iter().map(|p| p.width).sum();
-    let height = panels.iter().map(|p| p.height).max().unwrap_or(1);
-    let mut img = RgbImage::new(width, height)?;
-    let w = img.width as usize;
-    let mut x0 = 0usize;
-    for src in &panels {
-        let sw = src.width as usize;
-        for y in 0..src.height as usize {
-            let s = &src.pixels[3 * y * sw..3 * (y + 1) * sw];
-            img.pixels[3 * (y * w + x0)..3 * (y * w + x0 + sw)].copy_from_slice(s);
-        }
-        x0 += sw;
-    }
-    Ok(img)
+    RgbImage::side_by_side(&panels)
 }

@@ -35,6 +35,10 @@ pub struct AdaptArgs {
     /// Largest element size.
     #[arg(long, default_value_t = AdaptRunOptions::default().hmax)]
     hmax: f64,
+    /// Half-width of the band around the zero level where the geometric metric applies (sizes
+    /// grow outside it). Default: 5 eps.
+    #[arg(long)]
+    band: Option<f64>,
     /// Use the multiscale Hessian (interpolation-error) metric with this many target vertices.
     #[arg(long)]
     target_vertices: Option<usize>,
@@ -70,6 +74,7 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         eps: a.eps,
         hmin: a.hmin,
         hmax: a.hmax,
+        band: a.band,
         target_vertices: a.target_vertices,
         iso: a.iso,
         hgrad: a.hgrad,

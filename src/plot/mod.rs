@@ -83,6 +83,25 @@ impl RgbImage {
         set.len()
     }
 
+    /// The images side by side, top-aligned, on a white background as high as the highest.
+    /// Errors: no image, or a result outside the size limits of [`RgbImage::new`].
+    pub fn side_by_side(images: &[RgbImage]) -> Result<RgbImage> {
+        let width = images.iter().map(|p| p.width).sum();
+        let height = images.iter().map(|p| p.height).max().unwrap_or(0);
+        let mut img = RgbImage::new(width, height)?;
+        let w = img.width as usize;
+        let mut x0 = 0usize;
+        for src in images {
+            let sw = src.width as usize;
+            for y in 0..src.height as usize {
+                let s = &src.pixels[3 * y * sw..3 * (y + 1) * sw];
+                img.pixels[3 * (y * w + x0)..3 * (y * w + x0 + sw)].copy_from_slice(s);
+            }
+            x0 += sw;
+        }
+        Ok(img)
+    }
+
     /// Encodes the image as PNG into `path`: written to a temporary file beside it (so readers
     /// never see a partial file) and renamed into place.
     pub fn save_png(&self, path: &Path) -> Result<()> {
