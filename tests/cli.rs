@@ -284,8 +284,13 @@ fn convergence_best_vs_best_writes_the_fronts() {
     );
     let csv = std::fs::read_to_string(dir.join("fronts_circle.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 8, "{csv}");
+    assert!(csv.starts_with("family,eps,hmin,normal_factor,band_hmin,vertices,"));
     assert!(
-        csv.lines().skip(1).any(|l| l.ends_with("true,true")),
+        csv.lines().skip(1).all(|l| l.split(',').count() == 14
+            && l.split(',')
+                .nth(5)
+                .and_then(|v| v.parse::<usize>().ok())
+                .is_some_and(|v| v > 100)),
         "{csv}"
     );
     assert!(
@@ -295,9 +300,13 @@ fn convergence_best_vs_best_writes_the_fronts() {
             > 10_000
     );
     std::fs::remove_dir_all(&dir).ok();
-    let both = anisomesh(&["convergence", "--best-vs-best", "--paper-claim", "--quick"]);
-    assert!(!both.status.success());
-    assert!(String::from_utf8_lossy(&both.stderr).contains("cannot be used with"));
+    for other in [&["--paper-claim"][..], &["--points", "3"][..]] {
+        let mut args = vec!["convergence", "--best-vs-best", "--quick"];
+        args.extend_from_slice(other);
+        let out = anisomesh(&args);
+        assert!(!out.status.success(), "{other:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("cannot be used with"));
+    }
 }
 
 /// `anisomesh adapt --hmin 0.006 --band 0.003`: the Zalesak mesh on the anisotropic front of
@@ -329,6 +338,16 @@ fn adapt_band_option_sets_the_band_of_the_geometric_metric() {
     assert!(n1 < 0.6 * n0, "{n1} vs {n0} vertices");
     assert!(h1 < 2.0 * h0, "Hausdorff {h1:e} vs {h0:e}");
     let dir = std::env::temp_dir().join(format!("anisomesh-band-bad-{}", std::process::id()));
+    let metric = adapt_with_sol(
+        "meshes/square.mesh",
+        "meshes/square_metric.sol",
+        &["--band", "0.01"],
+        &dir,
+    );
+    assert_clean_error(&metric, "--band");
+    let hessian = anisomesh(&["adapt", "--band", "0.01", "--target-vertices", "1000"]);
+    assert!(!hessian.status.success());
+    assert!(String::from_utf8_lossy(&hessian.stderr).contains("cannot be used with"));
     for bad in ["--band=0", "--band=-0.01", "--band=nan"] {
         assert_clean_error(
             &anisomesh(&["adapt", bad, "-o", dir.to_str().unwrap()]),

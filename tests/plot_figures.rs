@@ -236,3 +236,24 @@ fn colour_scale_and_viridis() {
     let flat = ColourScale::fit(&[2.0, 2.0], false).unwrap();
     assert!(flat.lo < 2.0 && flat.hi > 2.0);
 }
+
+/// Panels side by side: each image is copied to its offset, the rest stays white; a buffer that
+/// does not match its size, or no image, is a typed error and never a panic.
+#[test]
+fn side_by_side_places_each_image_at_its_offset() {
+    use anisomesh::plot::RgbImage;
+    let mut a = RgbImage::new(20, 30).unwrap();
+    a.pixels.iter_mut().for_each(|p| *p = 10);
+    let mut b = RgbImage::new(40, 16).unwrap();
+    b.pixels.iter_mut().for_each(|p| *p = 200);
+    let img = RgbImage::side_by_side(&[a.clone(), b.clone()]).unwrap();
+    assert_eq!((img.width, img.height), (60, 30));
+    assert_eq!(img.pixel(19, 29), [10; 3]);
+    assert_eq!(img.pixel(20, 0), [200; 3]);
+    assert_eq!(img.pixel(59, 15), [200; 3]);
+    assert_eq!(img.pixel(59, 16), [255; 3]);
+    assert!(RgbImage::side_by_side(&[]).is_err());
+    let mut broken = b;
+    broken.pixels.pop();
+    assert!(RgbImage::side_by_side(&[a, broken]).is_err());
+}

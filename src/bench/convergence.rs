@@ -384,7 +384,7 @@ pub fn metric_with(
 /// `kink_scale`, the metric graded with the factor `gradation` ([`crate::metric::gradate`];
 /// `None`: the default of [`ShapeAdaptOptions::gradation`]). Returns the mesh and whether the
 /// rounds settled.
-pub(super) fn adapted_mesh(
+fn adapted_mesh(
     shape: &dyn Shape,
     domain: (DVec2, DVec2),
     lm: LevelSetMetric,
@@ -400,6 +400,27 @@ pub(super) fn adapted_mesh(
     };
     let (mesh, _u, rep) = adapt_to_shape(shape, domain, &opts)?;
     Ok((mesh, rep.converged))
+}
+
+/// A mesh adapted with `lm` ([`adapted_mesh`]) measured as a row of `family` with the sweep
+/// parameter `parameter` ([`row`]; `seconds` is the adaptation time).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn adapted_row(
+    family: Family,
+    parameter: f64,
+    lm: LevelSetMetric,
+    shape: &dyn Shape,
+    domain: (DVec2, DVec2),
+    corners: &[DVec2],
+    kink_scale: Option<f64>,
+    gradation: Option<f64>,
+) -> Result<ConvergenceRow> {
+    let t = Instant::now();
+    let (mesh, converged) = adapted_mesh(shape, domain, lm, kink_scale, gradation)?;
+    let secs = t.elapsed().as_secs_f64();
+    row(
+        family, parameter, lm.hmin, &mesh, shape, corners, secs, converged,
+    )
 }
 
 /// Radius of the corner neighbourhoods of [`hausdorff_split`] in the sweep (the slot of the
@@ -515,7 +536,7 @@ pub fn measure(mesh: &Mesh2, shape: &dyn Shape) -> Result<(f64, f64, f64)> {
 }
 
 #[allow(clippy::too_many_arguments)]
-pub(super) fn row(
+fn row(
     family: Family,
     parameter: f64,
     hmin: f64,
@@ -625,19 +646,15 @@ pub fn run(opts: &ConvergenceOptions) -> Result<ConvergenceReport> {
     for &eps in &eps_list {
         for (family, iso) in [(Family::Anisotropic, false), (Family::Isotropic, true)] {
             let lm = metric_with(eps, iso, opts.band_hmin, opts.grade);
-            let t = Instant::now();
-            let (mesh, converged) =
-                adapted_mesh(shape.as_ref(), domain, lm, opts.kink_scale, None)?;
-            let secs = t.elapsed().as_secs_f64();
-            rows.push(row(
+            rows.push(adapted_row(
                 family,
                 eps,
-                lm.hmin,
-                &mesh,
+                lm,
                 shape.as_ref(),
+                domain,
                 &corners,
-                secs,
-                converged,
+                opts.kink_scale,
+                None,
             )?);
         }
     }

@@ -11,11 +11,8 @@
 //! same corner features and adaptation rounds ([`crate::adapt::adapt_to_shape`]).
 
 use serde::Serialize;
-use std::time::Instant;
 
-use super::convergence::{
-    adapted_mesh, corners_of, domain_of, metric_with, row, ConvergenceRow, Family,
-};
+use super::convergence::{adapted_row, corners_of, domain_of, metric_with, ConvergenceRow, Family};
 use crate::adapt::ShapeAdaptOptions;
 use crate::error::Result;
 use crate::levelset::shape_by_name;
@@ -138,18 +135,15 @@ pub fn paper_claim(shape: &str, eps: f64, settings: &[ClaimSetting]) -> Result<V
         for (family, iso) in [(Family::Anisotropic, false), (Family::Isotropic, true)] {
             let mut lm = metric_with(eps, iso, setting.band_hmin, setting.grade);
             lm.eps = setting.eps.unwrap_or(eps);
-            let t = Instant::now();
-            let (mesh, converged) = adapted_mesh(s.as_ref(), domain, lm, None, setting.gradation)?;
-            let secs = t.elapsed().as_secs_f64();
-            pair.push(row(
+            pair.push(adapted_row(
                 family,
                 eps,
-                lm.hmin,
-                &mesh,
+                lm,
                 s.as_ref(),
+                domain,
                 &corners,
-                secs,
-                converged,
+                None,
+                setting.gradation,
             )?);
         }
         let isotropic = pair.pop().expect("two meshes per setting");

@@ -226,6 +226,27 @@ fn panel(report: &ConvergenceReport, area: bool) -> LogLogPlot {
     }
 }
 
+/// Horizontal lines `(name, ratio)` across the range of the positive finite `xs` (a ratio panel's
+/// reference values, such as the paper's 10); none when that range is empty or a single value.
+pub(super) fn ratio_lines(xs: impl IntoIterator<Item = f64>, lines: &[(&str, f64)]) -> Vec<Series> {
+    let (lo, hi) = xs
+        .into_iter()
+        .filter(|x| *x > 0.0 && x.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(l, h), x| (l.min(x), h.max(x)));
+    if lo >= hi {
+        return Vec::new();
+    }
+    lines
+        .iter()
+        .map(|&(name, y)| Series {
+            name: name.into(),
+            points: vec![(lo, y), (hi, y)],
+            show_fit_slope: false,
+            style: SeriesStyle::Line,
+        })
+        .collect()
+}
+
 /// The "anisotropy pays" panel: isotropic / anisotropic vertex counts against the Hausdorff
 /// error — interpolated between sweep points, from the fitted power laws, and at equal `ε`
 /// (plotted at the anisotropic mesh's error) — with the paper's claim of 10 as a line.
@@ -249,16 +270,10 @@ fn gain_panel(report: &ConvergenceReport) -> LogLogPlot {
         })
         .collect();
     equal_eps.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let xs: Vec<f64> = interp
-        .iter()
-        .chain(&fitted)
-        .chain(&equal_eps)
-        .map(|p| p.0)
-        .filter(|x| *x > 0.0 && x.is_finite())
-        .collect();
-    let (lo, hi) = xs
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
+    let lines = ratio_lines(
+        interp.iter().chain(&fitted).chain(&equal_eps).map(|p| p.0),
+        &[("paper: about 10 (004 5.1)", 10.0)],
+    );
     let mut series = vec![
         Series {
             name: "equal Hausdorff, interpolated".into(),
@@ -279,14 +294,7 @@ fn gain_panel(report: &ConvergenceReport) -> LogLogPlot {
             style: SeriesStyle::LineMarkers,
         },
     ];
-    if lo < hi {
-        series.push(Series {
-            name: "paper: about 10 (004 5.1)".into(),
-            points: vec![(lo, 10.0), (hi, 10.0)],
-            show_fit_slope: false,
-            style: SeriesStyle::Line,
-        });
-    }
+    series.extend(lines);
     LogLogPlot {
         title: format!("{}: anisotropy pays?", report.shape),
         x_label: "Hausdorff distance".into(),

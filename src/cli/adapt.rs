@@ -37,7 +37,7 @@ pub struct AdaptArgs {
     hmax: f64,
     /// Half-width of the band around the zero level where the geometric metric applies (sizes
     /// grow outside it). Default: 5 eps.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "target_vertices")]
     band: Option<f64>,
     /// Use the multiscale Hessian (interpolation-error) metric with this many target vertices.
     #[arg(long)]
@@ -92,6 +92,12 @@ pub fn run(a: AdaptArgs) -> Result<()> {
             Some(SolField::Scalar(_)) if a.hgrad.is_some() => {
                 return Err(Error::InvalidInput(format!(
                     "{}: --hgrad grades a metric; this file holds a scalar level set",
+                    sol_path.display()
+                )))
+            }
+            Some(SolField::Tensor2(_)) if a.band.is_some() => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: --band sets the band of the geometric metric; this file holds a metric",
                     sol_path.display()
                 )))
             }

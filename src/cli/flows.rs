@@ -182,8 +182,8 @@ pub struct ConvergenceArgs {
     /// Instead of the sweep, anisotropy at equal interface error best against best: both
     /// families swept over their free parameters (eps, normal size and band; isotropic size and
     /// band), the Pareto front of each, and their vertex ratio at equal error; writes
-    /// fronts_<shape>.csv and .png (about two minutes on zalesak; with --quick 8 meshes).
-    #[arg(long, conflicts_with = "paper_claim")]
+    /// fronts_<shape>.csv and .png (48 meshes, about 10 s on zalesak; with --quick 8 meshes).
+    #[arg(long, conflicts_with_all = ["paper_claim", "points"])]
     best_vs_best: bool,
     /// Output directory (CSV and PNG).
     #[arg(short, long, default_value = "out")]

@@ -84,9 +84,25 @@ impl RgbImage {
     }
 
     /// The images side by side, top-aligned, on a white background as high as the highest.
-    /// Errors: no image, or a result outside the size limits of [`RgbImage::new`].
+    /// Errors: no image, an image whose pixel buffer does not hold `3 width height` bytes, or a
+    /// result outside the size limits of [`RgbImage::new`].
     pub fn side_by_side(images: &[RgbImage]) -> Result<RgbImage> {
-        let width = images.iter().map(|p| p.width).sum();
+        if let Some(p) = images
+            .iter()
+            .find(|p| p.pixels.len() != 3 * p.width as usize * p.height as usize)
+        {
+            return Err(Error::InvalidInput(format!(
+                "image of {} x {} pixels holds {} bytes, not {}",
+                p.width,
+                p.height,
+                p.pixels.len(),
+                3 * p.width as usize * p.height as usize
+            )));
+        }
+        let width = images
+            .iter()
+            .try_fold(0u32, |w, p| w.checked_add(p.width))
+            .unwrap_or(u32::MAX);
         let height = images.iter().map(|p| p.height).max().unwrap_or(0);
         let mut img = RgbImage::new(width, height)?;
         let w = img.width as usize;
