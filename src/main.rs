@@ -1,7 +1,9 @@
 //! The `anisomesh` command line: argument parsing, then one call into the library per command.
 //! Every error is printed as one line on standard error with a non-zero exit status.
 
-mod cli;
+mod app;
+
+use app::cli;
 
 use clap::Parser;
 use std::process::ExitCode;

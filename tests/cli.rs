@@ -356,3 +356,98 @@ fn adapt_band_option_sets_the_band_of_the_geometric_metric() {
         assert!(!dir.exists(), "{bad}: nothing is written");
     }
 }
+
+#[test]
+fn adapt_refuses_a_request_larger_than_the_limit_before_adapting() {
+    let dir = std::env::temp_dir().join(format!("anisomesh_cli_limit_{}", std::process::id()));
+    let t0 = std::time::Instant::now();
+    let out = anisomesh(&[
+        "adapt",
+        "--expr",
+        "x*x+y*y-0.25",
+        "--eps",
+        "1e-9",
+        "--hmin",
+        "1e-7",
+        "--max-vertices",
+        "1e5",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert_clean_error(&out, "--max-vertices");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // The estimate is named, as a number of vertices far above the limit.
+    let estimate: f64 = stderr
+        .split("about ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no estimate in: {stderr}"));
+    assert!(estimate > 1e6, "{stderr}");
+    // Refused before adapting: no output directory, and far quicker than any adaptation.
+    assert!(!dir.join("report.json").exists());
+    assert!(t0.elapsed().as_secs_f64() < 30.0);
+}
+
+#[test]
+fn adapt_estimates_the_vertex_count_within_a_factor_two() {
+    let dir = std::env::temp_dir().join(format!("anisomesh_cli_estimate_{}", std::process::id()));
+    let out = anisomesh(&["adapt", "--shape", "circle", "-o", dir.to_str().unwrap()]);
+    assert_success(&out);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let (est, got) = (
+        report["estimated_vertices"].as_f64().unwrap(),
+        report["vertices"].as_f64().unwrap(),
+    );
+    assert!(
+        (0.5..2.0).contains(&(est / got)),
+        "estimate {est}, got {got}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn adapt_says_when_the_level_set_has_no_zero_level() {
+    let dir = std::env::temp_dir().join(format!("anisomesh_cli_nozero_{}", std::process::id()));
+    let out = anisomesh(&["adapt", "--expr", "x^2+y^2+1", "-o", dir.to_str().unwrap()]);
+    assert_clean_error(&out, "no zero level");
+    assert!(!dir.join("report.json").exists());
+}
+
+#[test]
+fn adapt_says_that_hmax_bounds_a_small_target_vertex_count() {
+    let dir = std::env::temp_dir().join(format!("anisomesh_cli_target_{}", std::process::id()));
+    let out = anisomesh(&[
+        "adapt",
+        "--target-vertices",
+        "5",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert_success(&out);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("warning") && stderr.contains("hmax"),
+        "{stderr}"
+    );
+    let report = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    assert!(report.contains("hmax"), "the warning is in report.json too");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn info_says_that_a_missing_file_does_not_exist() {
+    let out = anisomesh(&["info", "/nonexistent"]);
+    assert_clean_error(&out, "No such file");
+    let out = anisomesh(&["adapt", "--input", "missing.mesh", "--sol", "missing.sol"]);
+    assert_clean_error(&out, "No such file");
+}
+
+#[test]
+fn adapt_validates_a_negative_eps_instead_of_the_parser() {
+    for flag in ["--eps", "--hmin", "--hmax"] {
+        let out = anisomesh(&["adapt", flag, "-1", "-o", "/tmp/anisomesh_never"]);
+        assert_clean_error(&out, "need eps > 0 and 0 < hmin <= hmax");
+    }
+}

@@ -38,8 +38,10 @@ pub mod smooth;
 pub mod split;
 
 mod driver;
+pub mod estimate;
 pub mod features;
 mod report;
+mod run;
 mod shape;
 pub mod sources;
 
@@ -47,6 +49,9 @@ pub use driver::{
     adapt, validate_inputs, AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport,
 };
 pub use report::{mesh_report, MeshReport};
+pub use run::{
+    metric_file_options, run, AdaptTarget, Adapted, RunOptions, RunReport, DEFAULT_MAX_VERTICES,
+};
 pub use shape::{adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
 pub use topo::{Ctx, MetricInterpolation, OpParams, VClass};

@@ -37,8 +37,18 @@ fn extension(path: &Path) -> String {
         .unwrap_or_default()
 }
 
+/// An [`Error::Io`] naming `path` when there is no such file (checked before the extension, so
+/// that a mistyped path is reported as missing rather than as an unknown format).
+fn existing(path: &Path) -> Result<()> {
+    match std::fs::metadata(path) {
+        Ok(_) => Ok(()),
+        Err(e) => Err(Error::io(path, e)),
+    }
+}
+
 /// Reads a 2D mesh, choosing the format by extension: `.mesh` (Medit) or `.msh` (Gmsh 4.1).
 pub fn read_mesh(path: &Path) -> Result<Mesh2> {
+    existing(path)?;
     match extension(path).as_str() {
         "mesh" => read_medit2(path),
         "msh" => read_msh(path),
@@ -124,6 +134,7 @@ pub enum AnyFile {
 
 /// Reads any supported file by extension; a `.mesh` is read as 2D unless it is a volume mesh.
 pub fn read_any(path: &Path) -> Result<AnyFile> {
+    existing(path)?;
     match extension(path).as_str() {
         "sol" => Ok(AnyFile::Sol(read_sol(path)?)),
         "obj" => Ok(AnyFile::Surface(read_obj(path)?)),

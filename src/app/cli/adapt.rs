@@ -1,0 +1,180 @@
+//! `anisomesh adapt`: adapt a mesh to a shape, an expression, a level set or a metric file.
+
+use super::metric_args::MetricArgs;
+use super::progress::Spinner;
+use super::shape::chosen_shape;
+use crate::app::repro::adapt_run::{self, AdaptRunOptions};
+use anisomesh::adapt::{AdaptTarget, LevelSetMetric, RunOptions, DEFAULT_MAX_VERTICES};
+use anisomesh::io::{self, SolField};
+use anisomesh::{DVec2, Error, Result};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Options of `anisomesh adapt` (defaults: the Zalesak disk at the paper's setting).
+#[derive(Debug, Args)]
+pub struct AdaptArgs {
+    /// A built-in shape: zalesak (default), circle or flower.
+    #[arg(long, conflicts_with_all = ["expr", "input"])]
+    shape: Option<String>,
+    /// A level-set expression in x and y, negative inside, e.g. "x^2 + y^2 - 0.25".
+    #[arg(long, conflicts_with = "input")]
+    expr: Option<String>,
+    /// An input mesh (.mesh, .msh); with --sol.
+    #[arg(long, requires = "sol")]
+    input: Option<PathBuf>,
+    /// A .sol on the input mesh: a scalar field means "adapt to its zero level"; a symmetric
+    /// tensor field (Medit type 3) means "conform to this metric" (as mmg2d does).
+    #[arg(long, requires = "input")]
+    sol: Option<PathBuf>,
+    /// The rectangle to mesh for --shape/--expr, as "x0,y0,x1,y1".
+    #[arg(long)]
+    domain: Option<String>,
+    /// The geometric metric's accuracy, sizes, band and growth.
+    #[command(flatten)]
+    metric: MetricArgs,
+    /// Use the multiscale Hessian (interpolation-error) metric with this many target vertices.
+    #[arg(long, conflicts_with = "band")]
+    target_vertices: Option<usize>,
+    /// Isotropic version of the metric (for comparison).
+    #[arg(long)]
+    iso: bool,
+    /// With --sol holding a metric: grade it during the adaptation with this growth factor
+    /// (> 1; as mmg2d's -hgrad, e.g. 1.3). Default: the metric as given.
+    #[arg(long, requires = "sol")]
+    hgrad: Option<f64>,
+    /// Refuse a run whose metric asks for more vertices than this (estimated from its
+    /// complexity before adapting).
+    #[arg(long, default_value_t = DEFAULT_MAX_VERTICES)]
+    max_vertices: f64,
+    /// Output directory.
+    #[arg(short, long, default_value = "out")]
+    output: PathBuf,
+}
+
+fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| Error::InvalidInput(format!("--domain '{s}': {e}")))?;
+    match v[..] {
+        [x0, y0, x1, y1] if x1 > x0 && y1 > y0 => Ok((DVec2::new(x0, y0), DVec2::new(x1, y1))),
+        _ => Err(Error::InvalidInput(format!(
+            "--domain '{s}': expected x0,y0,x1,y1 with x1 > x0 and y1 > y0"
+        ))),
+    }
+}
+
+/// Runs the job and prints the report.
+pub fn run(a: AdaptArgs) -> Result<()> {
+    let mut opts = AdaptRunOptions {
+        run: RunOptions {
+            metric: LevelSetMetric {
+                isotropic: a.iso,
+                ..a.metric.apply(LevelSetMetric::default())
+            },
+            target_vertices: a.target_vertices,
+            hgrad: a.hgrad,
+            max_vertices: a.max_vertices,
+        },
+        out_dir: a.output.clone(),
+        ..AdaptRunOptions::default()
+    };
+    let input = if let (Some(mesh_path), Some(sol_path)) = (&a.input, &a.sol) {
+        let mesh = io::read_mesh(mesh_path)?;
+        let sol = io::read_sol_for(sol_path, mesh.n_points())?;
+        opts.name = mesh_path
+            .file_stem()
+            .map(|s| format!("{}_adapted", s.to_string_lossy()))
+            .unwrap_or_else(|| "adapted".into());
+        match sol.fields.into_iter().next() {
+            Some(SolField::Scalar(_)) if a.hgrad.is_some() => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: --hgrad grades a metric; this file holds a scalar level set",
+                    sol_path.display()
+                )))
+            }
+            Some(SolField::Tensor2(_)) if a.metric.has_band() => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: --band sets the band of the geometric metric; this file holds a metric",
+                    sol_path.display()
+                )))
+            }
+            Some(SolField::Scalar(u)) => AdaptTarget::LevelSet { mesh, u },
+            Some(SolField::Tensor2(metric)) => AdaptTarget::Metric { mesh, metric },
+            _ => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: expected a scalar level set or a 2D metric (symmetric tensor) field",
+                    sol_path.display()
+                )))
+            }
+        }
+    } else {
+        let name = match (&a.shape, &a.expr) {
+            (None, None) => Some("zalesak".to_string()),
+            (s, _) => s.clone(),
+        };
+        let shape = chosen_shape(name.as_deref(), a.expr.as_deref())?;
+        opts.name = name.unwrap_or_else(|| "expr".into());
+        let domain = match &a.domain {
+            Some(d) => parse_domain(d)?,
+            None => adapt_run::default_domain(&opts.name),
+        };
+        AdaptTarget::Shape { shape, domain }
+    };
+    let spinner = Spinner::start("adapting");
+    let r = adapt_run::run(input, &opts);
+    spinner.finish();
+    let r = r?;
+    for w in &r.run.warnings {
+        eprintln!("anisomesh: warning: {w}");
+    }
+    let (m, r) = (&r.run.mesh, &r);
+    println!(
+        "estimated from the metric: {:.0} vertices",
+        r.run.estimated_vertices
+    );
+    println!("metric: {}", r.run.metric_source);
+    println!(
+        "vertices {}  triangles {}  edges in [1/sqrt2, sqrt2] {:.2}%  Q_ani mean {:.4} max {:.3}",
+        m.vertices,
+        m.triangles,
+        100.0 * m.edge_length_in_range,
+        m.q_ani_mean,
+        m.q_ani_max
+    );
+    if m.perimeter > 0.0 {
+        print!("area {:.10}  perimeter {:.10}", m.area, m.perimeter);
+        if let (Some(ea), Some(ep)) = (m.exact_area, m.exact_perimeter) {
+            print!(
+                "  (exact {ea:.10}, {ep:.10}: relative errors {:.2e}, {:.2e})",
+                (m.area - ea).abs() / ea,
+                (m.perimeter - ep).abs() / ep
+            );
+        }
+        println!();
+    }
+    if let Some(h) = m.hausdorff {
+        println!("two-sided interface distance (Hausdorff) {h:.3e}");
+    }
+    println!(
+        "{:.2} s, {:.0} vertices/s ({} cycles, {} splits, {} collapses, {} flips, {} moves{})",
+        m.seconds,
+        m.vertices as f64 / m.seconds.max(1e-9),
+        r.run.cycles,
+        r.run.splits,
+        r.run.collapses,
+        r.run.flips,
+        r.run.moves,
+        if r.run.converged {
+            ""
+        } else {
+            ", not converged"
+        }
+    );
+    for f in &r.files {
+        println!("wrote {}", f.display());
+    }
+    println!("wrote {}", opts.out_dir.join("report.json").display());
+    Ok(())
+}

@@ -1,0 +1,228 @@
+//! `anisomesh bench`: the speed benchmarks, with the peers beside ours in the same run.
+
+use crate::app::repro::peers::{self, PeerKind, PeerOptions, PeerResult};
+use crate::app::repro::speed::{self, SpeedOptions, SpeedRow};
+use anisomesh::levelset::redistance::redistance_geometric;
+use anisomesh::{DVec2, GridPattern, Mesh2, Result};
+use clap::{Args, Subcommand};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// The benchmarks.
+#[derive(Debug, Subcommand)]
+pub enum Bench {
+    /// Adaptation speed: a 100 x 100 grid of [-2, 2]^2 carrying the eq. (6) metric of the
+    /// Zalesak disk with eps = hmin, adapted as `anisomesh adapt --input BG.mesh --sol M.sol`
+    /// (one thread: RAYON_NUM_THREADS=1).
+    Speed(SpeedArgs),
+    /// anisomesh against mmg2d_O3 and FreeFem++ BAMG on the same problem, same run: the
+    /// accuracy sweep (error against vertex count) and the speed case.
+    Peers(PeersArgs),
+    /// Geometric redistancing speed (004 §2.2): an n x n grid of [-1, 1]^2 and four circles.
+    Redistance(RedistanceArgs),
+}
+
+/// Options of `anisomesh bench speed`.
+#[derive(Debug, Args)]
+pub struct SpeedArgs {
+    /// The accuracies (eps = hmin), comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1e-3, 1e-4, 3e-5, 1e-5])]
+    eps: Vec<f64>,
+    /// Grade the metric during the adaptation with this factor (as mmg2d's -hgrad).
+    #[arg(long)]
+    hgrad: Option<f64>,
+    /// Log-Euclidean metric interpolation at new vertices instead of linear sizes.
+    #[arg(long)]
+    log_interp: bool,
+}
+
+/// Options of `anisomesh bench peers`.
+#[derive(Debug, Args)]
+pub struct PeersArgs {
+    /// Only the accuracy sweep.
+    #[arg(long, conflicts_with = "speed_only")]
+    sweep_only: bool,
+    /// Only the speed case.
+    #[arg(long)]
+    speed_only: bool,
+    /// The accuracy of the speed case (eps = hmin).
+    #[arg(long, default_value_t = 1e-5)]
+    speed_eps: f64,
+    /// A small sweep (two eps, coarse background, two iterations) and no speed case.
+    #[arg(long)]
+    quick: bool,
+    /// Restrict to these adapters (comma-separated: mmg2d-metric, mmg2d-ls, bamg-metric,
+    /// bamg-ls, anisomesh).
+    #[arg(long, value_delimiter = ',')]
+    kinds: Vec<String>,
+    /// Time budget of our speed-case run, in seconds.
+    #[arg(long, default_value_t = 1800)]
+    budget: u64,
+    /// Output directory (peers_sweep.csv, peers_speed.csv, the meshes).
+    #[arg(short, long, default_value = "out/peers")]
+    output: PathBuf,
+}
+
+/// Options of `anisomesh bench redistance`.
+#[derive(Debug, Args)]
+pub struct RedistanceArgs {
+    /// Cells per side of the grid.
+    #[arg(long, default_value_t = 1000)]
+    n: usize,
+}
+
+/// Runs one benchmark.
+pub fn run(b: Bench) -> Result<()> {
+    match b {
+        Bench::Speed(a) => speed(a),
+        Bench::Peers(a) => peers(a),
+        Bench::Redistance(a) => redistance(a),
+    }
+}
+
+fn speed(a: SpeedArgs) -> Result<()> {
+    println!(
+        "{:>8} {:>10} {:>10} {:>8} {:>12} {:>8} {:>8} {:>8}",
+        "eps", "vertices", "triangles", "seconds", "vertices/s", "in_range", "q_mean", "q_max"
+    );
+    let opts = SpeedOptions {
+        log_interp: a.log_interp,
+        hgrad: a.hgrad,
+    };
+    speed::run(&a.eps, &opts, print_speed_row)?;
+    Ok(())
+}
+
+fn print_speed_row(r: &SpeedRow) {
+    println!(
+        "{:>8.0e} {:>10} {:>10} {:>8.2} {:>12.0} {:>8.4} {:>8.3} {:>8.2}",
+        r.eps,
+        r.vertices,
+        r.triangles,
+        r.seconds,
+        r.vertices as f64 / r.seconds,
+        r.quality.edge_length_in_range,
+        r.quality.q_ani_mean,
+        r.quality.q_ani_max
+    );
+    println!(
+        "    cycles {} converged {} gradation {:.2} s fingerprint {:016x}",
+        r.report.cycles, r.report.converged, r.report.gradation_seconds, r.fingerprint
+    );
+    for kind in [
+        anisomesh::adapt::PassKind::Split,
+        anisomesh::adapt::PassKind::Collapse,
+        anisomesh::adapt::PassKind::Flip,
+        anisomesh::adapt::PassKind::Smooth,
+    ] {
+        let (passes, n, s) = r.report.pass_totals(kind);
+        println!("    {kind:?}: {passes} passes, {n} ops, {s:.3} s");
+    }
+}
+
+fn print_peer(r: &PeerResult) {
+    if r.is_ok() {
+        println!(
+            "{:<13} eps {:>7.1e}  nv {:>8}  in-range {:>5.1}%  Qmean {:>6.3}  Qmax {:>9.2}  \
+             area {:>+9.2e}  perim {:>+9.2e}  haus {:>8.2e}  t {:>7.2} s (last {:.2} s, self {})",
+            r.peer.slug(),
+            r.eps,
+            r.vertices,
+            100.0 * r.edge_length_in_range,
+            r.q_ani_mean,
+            r.q_ani_max,
+            r.area_rel_error,
+            r.perimeter_rel_error,
+            r.hausdorff,
+            r.seconds,
+            r.seconds_last,
+            r.self_seconds_last
+                .map(|s| format!("{s:.2} s"))
+                .unwrap_or_else(|| "-".into())
+        );
+    } else {
+        println!("{:<13} eps {:>7.1e}  {:?}", r.peer.slug(), r.eps, r.status);
+    }
+}
+
+fn peers(a: PeersArgs) -> Result<()> {
+    let out = a.output;
+    let wanted = |k: PeerKind| a.kinds.is_empty() || a.kinds.iter().any(|s| s == k.slug());
+    if !a.speed_only {
+        let base = PeerOptions {
+            work_dir: out.join("work"),
+            ..PeerOptions::default()
+        };
+        let (eps, opts): (&[f64], PeerOptions) = if a.quick {
+            let o = PeerOptions {
+                background: 30,
+                iterations: 2,
+                timeout: Duration::from_secs(120),
+                ..base
+            };
+            (&[1e-2, 4e-3], o)
+        } else {
+            (&[1e-2, 3e-3, 1e-3, 3e-4, 1e-4], base)
+        };
+        println!(
+            "sweep: background {0}x{0}, {1} fixed-point iterations per peer",
+            opts.background, opts.iterations
+        );
+        let kinds: Vec<PeerKind> = PeerKind::ALL.into_iter().filter(|&k| wanted(k)).collect();
+        for r in &peers::sweep(&kinds, eps, &opts, &out)? {
+            print_peer(r);
+        }
+        println!("wrote {}", out.join("peers_sweep.csv").display());
+    }
+    if !a.quick && !a.sweep_only {
+        let with_mmg = wanted(PeerKind::Mmg2dMetric);
+        let budget = Duration::from_secs(a.budget);
+        peers::speed_case(&out, a.speed_eps, with_mmg, budget, print_peer)?;
+        println!("wrote {}", out.join("peers_speed.csv").display());
+    }
+    Ok(())
+}
+
+fn redistance(a: RedistanceArgs) -> Result<()> {
+    let n = a.n;
+    let mesh = Mesh2::rectangle(
+        DVec2::splat(-1.0),
+        DVec2::splat(1.0),
+        n,
+        n,
+        GridPattern::Right,
+    )?;
+    // Four circles of radius 0.37 centred at (±0.5, ±0.5): about 10,000 cut triangles at n = 1000.
+    let r = 0.37;
+    let exact = |p: &DVec2| DVec2::new(p.x.abs() - 0.5, p.y.abs() - 0.5).length() - r;
+    let u: Vec<f64> = mesh.points.iter().map(exact).collect();
+    let cut = mesh
+        .tris
+        .iter()
+        .filter(|t| {
+            let s = t.map(|v| u[v as usize]);
+            s.iter().any(|&x| x < 0.0) && s.iter().any(|&x| x > 0.0)
+        })
+        .count();
+    let mut best = f64::INFINITY;
+    let mut d = Vec::new();
+    for _ in 0..3 {
+        let t0 = Instant::now();
+        d = redistance_geometric(&mesh, &u)?;
+        best = best.min(t0.elapsed().as_secs_f64());
+    }
+    let err = d
+        .iter()
+        .zip(&mesh.points)
+        .map(|(d, p)| (d - exact(p)).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "{} vertices, {} cut triangles, {} threads: best of 3 = {:.3} s (max |d - d_exact| = {:.2e})",
+        mesh.n_points(),
+        cut,
+        rayon::current_num_threads(),
+        best,
+        err
+    );
+    Ok(())
+}

@@ -1,0 +1,13 @@
+//! Benchmark flows: one file per benchmark, each returning a typed report.
+
+pub mod adapt_run;
+pub mod convergence;
+pub mod convergence_claim;
+pub mod convergence_figure;
+pub mod convergence_fronts;
+pub mod couette;
+pub mod couette_sweep;
+pub mod peers;
+pub mod reinit;
+pub mod speed;
+pub mod zalesak;
