@@ -1,10 +1,14 @@
-//! Points and robust geometric predicates.
+//! Points, robust geometric predicates and per-simplex kernels.
 //!
 //! Points are `glam::DVec2` / `DVec3`. The orientation and in-circle tests are Shewchuk's adaptive
 //! exact predicates (through the `robust` crate), so topological decisions never depend on
-//! round-off.
+//! round-off. [`simplex`] holds the kernels written once for triangles and tetrahedra (volume,
+//! barycentric coordinates, P1 gradients) over the [`Point`] trait.
+
+pub mod simplex;
 
 pub use glam::{DVec2, DVec3};
+pub use simplex::Point;
 
 #[inline]
 fn coord(p: DVec2) -> robust::Coord<f64> {

@@ -43,11 +43,17 @@ impl Mesh3 {
                 c2[k + 1..].copy_from_slice(&o[k + 1..]);
                 let nk = if k > 1 { k as u8 - 1 } else { 3 };
                 let g = self.generation[t].saturating_add(1);
+                let (t1, t2) = (self.oriented(c1), self.oriented(c2));
+                let f1 = self.child_face_labels(t, t1, z, o[k], o[0]);
+                let f2 = self.child_face_labels(t, t2, z, o[0], o[k]);
                 self.maubach[t] = (c1, nk);
-                self.tets[t] = self.oriented(c1);
+                self.tets[t] = t1;
+                self.face_ref[t] = f1;
                 self.generation[t] = g;
                 self.maubach.push((c2, nk));
-                self.tets.push(self.oriented(c2));
+                self.tets.push(t2);
+                self.face_ref.push(f2);
+                self.tet_ref.push(self.tet_ref[t]);
                 self.generation.push(g);
                 count += 1;
             }
@@ -68,7 +74,38 @@ impl Mesh3 {
                 })
                 .collect();
         }
+        self.build_neighbours();
         count
+    }
+
+    /// Face labels of a child `child` of tetrahedron `t` cut at the midpoint `z` of its
+    /// refinement edge: the face opposite `z` is the parent's face opposite `replaced` (the edge
+    /// end the child lost), the face opposite `cut_opp` (the end it kept) is the new interior cut
+    /// face (0), and every other face lies in the parent's face opposite the same vertex.
+    fn child_face_labels(
+        &self,
+        t: usize,
+        child: [u32; 4],
+        z: u32,
+        replaced: u32,
+        cut_opp: u32,
+    ) -> [i32; 4] {
+        let parent = self.tets[t];
+        let opp = |w: u32| {
+            parent
+                .iter()
+                .position(|&x| x == w)
+                .map_or(0, |i| self.face_ref[t][i])
+        };
+        child.map(|v| {
+            if v == z {
+                opp(replaced)
+            } else if v == cut_opp {
+                0
+            } else {
+                opp(v)
+            }
+        })
     }
 
     /// Refine until every tetrahedron that may come within `width` of the zero level of the

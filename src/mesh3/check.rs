@@ -4,11 +4,15 @@ use std::collections::{HashMap, HashSet};
 
 use super::{signed_volume, Mesh3};
 use crate::error::{Error, MeshDefect, Result};
+use crate::mesh::NONE;
 
 impl Mesh3 {
     /// Verify: indices in range, no repeated vertex, finite coordinates, positive volumes, every
     /// face shared by at most two tetrahedra, no hanging node (no vertex at the midpoint of an
-    /// edge of a face that only one tetrahedron has), and the bisection data in step with `tets`.
+    /// edge of a face that only one tetrahedron has), the bisection data in step with `tets`, and
+    /// the face adjacency and labels: `neighbours` symmetric and sharing the face, `NONE` exactly
+    /// on unshared faces, label arrays of the right length, an interior face labelled the same
+    /// from both sides.
     pub fn check(&self) -> Result<()> {
         let n = self.points.len();
         if let Some(v) = self.points.iter().position(|p| !p.is_finite()) {
@@ -93,6 +97,72 @@ impl Mesh3 {
                         vertex: v,
                         a: a as usize,
                         b: b as usize,
+                    }
+                    .into());
+                }
+            }
+        }
+        self.check_topology(&faces)
+    }
+
+    /// The adjacency and label part of [`Mesh3::check`]; `faces` counts the tetrahedra of each
+    /// face (sorted vertices).
+    fn check_topology(&self, faces: &HashMap<[u32; 3], u32>) -> Result<()> {
+        let nt = self.tets.len();
+        let lengths = [
+            (
+                self.neighbours.len(),
+                "neighbour array length differs from tetrahedron count",
+            ),
+            (
+                self.tet_ref.len(),
+                "sub-domain label array length differs from tetrahedron count",
+            ),
+            (
+                self.face_ref.len(),
+                "face label array length differs from tetrahedron count",
+            ),
+        ];
+        for (len, detail) in lengths {
+            if len != nt {
+                return Err(MeshDefect::BadLabel {
+                    tri: len.min(nt),
+                    detail,
+                }
+                .into());
+            }
+        }
+        for t in 0..nt {
+            for i in 0..4 {
+                let bad = |detail| -> Result<()> {
+                    Err(MeshDefect::BadAdjacency {
+                        tri: t,
+                        edge: i,
+                        detail,
+                    }
+                    .into())
+                };
+                let nb = self.neighbours[t][i];
+                let shared = faces.get(&self.face_key(t, i)) == Some(&2);
+                if nb == NONE {
+                    if shared {
+                        return bad("a face shared by two tetrahedra has no neighbour");
+                    }
+                    continue;
+                }
+                if nb as usize >= nt || nb as usize == t {
+                    return bad("neighbour index out of range or the tetrahedron itself");
+                }
+                let Some(j) = self.mirror_face(t, i, nb as usize) else {
+                    return bad("neighbour does not share this face");
+                };
+                if self.neighbours[nb as usize][j] != t as u32 {
+                    return bad("neighbour does not point back (asymmetric adjacency)");
+                }
+                if self.face_ref[t][i] != self.face_ref[nb as usize][j] {
+                    return Err(MeshDefect::BadLabel {
+                        tri: t,
+                        detail: "an interior face has different labels on its two sides",
                     }
                     .into());
                 }

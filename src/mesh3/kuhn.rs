@@ -18,6 +18,7 @@ const PERMS: [[usize; 3]; 6] = [
 
 impl Mesh3 {
     /// The Kuhn mesh of the box `[lo, hi]` with `n = [nx, ny, nz]` cubes (cells) per direction.
+    /// Boundary faces are labelled by box side: `x = lo` 1, `x = hi` 2, `y` 3, 4, `z` 5, 6.
     pub fn kuhn_box(lo: DVec3, hi: DVec3, n: [usize; 3]) -> Result<Mesh3> {
         if n.contains(&0) {
             return Err(Error::InvalidInput(format!(
@@ -66,6 +67,23 @@ impl Mesh3 {
             }
         }
         let g = vec![0u8; maubach.len()];
-        Ok(Mesh3::from_maubach(points, maubach, g))
+        let mut m = Mesh3::from_maubach(points, maubach, g);
+        // Box sides: x = lo 1, x = hi 2, y = lo 3, y = hi 4, z = lo 5, z = hi 6 (exact: the
+        // side coordinates are stored exactly).
+        m.label_boundary(|m, f| {
+            let p = f.map(|v| m.points[v as usize]);
+            (0..3)
+                .find_map(|a| {
+                    if p.iter().all(|q| q[a] == lo[a]) {
+                        Some(2 * a as i32 + 1)
+                    } else if p.iter().all(|q| q[a] == hi[a]) {
+                        Some(2 * a as i32 + 2)
+                    } else {
+                        None
+                    }
+                })
+                .unwrap_or(1)
+        });
+        Ok(m)
     }
 }

@@ -1,7 +1,7 @@
 //! Tetrahedral meshes (3D), used by the redistancing work (003 §8).
 //!
-//! - [`Mesh3`]: points and positively oriented tetrahedra, [`Mesh3::check`], vertex-to-vertex
-//!   adjacency.
+//! - [`Mesh3`]: points and positively oriented tetrahedra, face neighbours, sub-domain and
+//!   boundary face labels (`topology.rs`), [`Mesh3::check`], vertex-to-vertex adjacency.
 //! - [`Mesh3::kuhn_box`]: the structured Kuhn (Freudenthal) subdivision of a box, 6 tetrahedra per
 //!   cube (`kuhn.rs`).
 //! - [`Mesh3::refine`]: conforming local refinement by newest-vertex bisection (Maubach's tagged
@@ -10,10 +10,16 @@
 mod bisect;
 mod check;
 mod kuhn;
+mod topology;
 
 use crate::geom::DVec3;
 
 /// A conforming tetrahedral mesh. `tets[t]` is positively oriented (positive signed volume).
+///
+/// Conventions (those of `Mesh2`): local face `i` of tetrahedron `t` is the face opposite local
+/// vertex `i`; `neighbours[t][i]` is the tetrahedron across it, or [`crate::mesh::NONE`] on the
+/// boundary; `face_ref[t][i]` is its label (0 = unlabelled; boundary faces default to 1, an
+/// interior face has the same label seen from both sides); `tet_ref[t]` is the sub-domain label.
 ///
 /// `maubach[t]` is the vertex order and tag of tetrahedron `t` used by newest-vertex bisection
 /// (the refinement edge is `order[0]–order[tag]`); it is the same vertex set as `tets[t]`, possibly
@@ -22,6 +28,12 @@ use crate::geom::DVec3;
 pub struct Mesh3 {
     pub points: Vec<DVec3>,
     pub tets: Vec<[u32; 4]>,
+    /// The tetrahedron across local face `i`, or `NONE` on the boundary.
+    pub neighbours: Vec<[u32; 4]>,
+    /// Sub-domain label of each tetrahedron.
+    pub tet_ref: Vec<i32>,
+    /// Label of local face `i` of each tetrahedron (0 = unlabelled).
+    pub face_ref: Vec<[i32; 4]>,
     /// Number of bisections from the initial (Kuhn) tetrahedron.
     pub generation: Vec<u8>,
     maubach: Vec<([u32; 4], u8)>,
@@ -31,7 +43,7 @@ pub struct Mesh3 {
 /// `(b - a) × (c - a)`).
 #[inline]
 pub fn signed_volume(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
-    (b - a).dot((c - a).cross(d - a)) / 6.0
+    crate::geom::simplex::volume(&[a, b, c, d])
 }
 
 impl Mesh3 {
@@ -63,14 +75,7 @@ impl Mesh3 {
 
     /// Longest edge of tetrahedron `t`.
     pub fn tet_diameter(&self, t: usize) -> f64 {
-        let p = self.tet_points(t);
-        let mut h: f64 = 0.0;
-        for i in 0..4 {
-            for j in i + 1..4 {
-                h = h.max((p[i] - p[j]).length());
-            }
-        }
-        h
+        crate::geom::simplex::diameter(&self.tet_points(t))
     }
 
     /// Vertex-to-vertex adjacency in offset-plus-data form (`v2v`): the neighbours of `v` are
@@ -98,19 +103,26 @@ impl Mesh3 {
         (off, data)
     }
 
-    /// Build from Maubach-ordered tetrahedra, orienting `tets` positively.
+    /// Build from Maubach-ordered tetrahedra, orienting `tets` positively: face neighbours,
+    /// sub-domain 0, boundary faces labelled 1.
     fn from_maubach(
         points: Vec<DVec3>,
         maubach: Vec<([u32; 4], u8)>,
         generation: Vec<u8>,
     ) -> Mesh3 {
+        let n = maubach.len();
         let mut m = Mesh3 {
             points,
             tets: Vec::new(),
+            neighbours: Vec::new(),
+            tet_ref: vec![0; n],
+            face_ref: vec![[0; 4]; n],
             generation,
             maubach,
         };
         m.tets = m.maubach.iter().map(|(o, _)| m.oriented(*o)).collect();
+        m.build_neighbours();
+        m.label_boundary(|_, _| 1);
         m
     }
 

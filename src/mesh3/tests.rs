@@ -1,5 +1,6 @@
 use super::*;
 use crate::error::MeshDefect;
+use crate::mesh::NONE;
 
 #[test]
 fn kuhn_box_is_valid() {
@@ -57,5 +58,52 @@ fn check_detects_a_hanging_node() {
     assert!(matches!(
         m.check(),
         Err(crate::Error::InvalidMesh(MeshDefect::HangingVertex { .. }))
+    ));
+}
+
+#[test]
+fn neighbours_and_face_labels() {
+    let mut m = Mesh3::kuhn_box(DVec3::ZERO, DVec3::ONE, [2, 1, 1]).unwrap();
+    m.check().unwrap();
+    // 6 tetrahedra per cube, 2 boundary triangles per cube side: 2 (4 + 2 + 2 + ...) sides.
+    let boundary: Vec<_> = m.boundary_faces().collect();
+    assert_eq!(boundary.len(), 2 * (2 * 2 + 2 * 2 + 2));
+    let mut per_label = [0usize; 7];
+    for &(t, i) in &boundary {
+        per_label[m.face_ref[t][i] as usize] += 1;
+    }
+    assert_eq!(per_label, [0, 2, 2, 4, 4, 4, 4]);
+    // Refinement keeps the labels on the sides and the adjacency consistent.
+    m.tet_ref[0] = 7;
+    let marked: Vec<bool> = (0..m.n_tets()).map(|t| t % 2 == 0).collect();
+    m.refine(&marked);
+    m.check().unwrap();
+    let mut per_label = [0usize; 7];
+    for (t, i) in m.boundary_faces() {
+        let l = m.face_ref[t][i] as usize;
+        assert!(l >= 1, "unlabelled boundary face");
+        per_label[l] += 1;
+        // The face lies on the side its label names.
+        let (axis, hi) = ((l - 1) / 2, (l - 1) % 2 == 1);
+        let want = if hi { 1.0 } else { 0.0 };
+        for v in m.face_vertices(t, i) {
+            assert_eq!(m.points[v as usize][axis], want);
+        }
+    }
+    assert!(per_label[1..].iter().all(|&c| c >= 2), "{per_label:?}");
+    assert!(m.tet_ref.iter().filter(|&&r| r == 7).count() >= 2);
+    // A broken adjacency or label is reported.
+    let mut bad = m.clone();
+    let (t, i) = (0, (0..4).find(|&i| m.neighbours[0][i] != NONE).unwrap());
+    bad.neighbours[t][i] = NONE;
+    assert!(matches!(
+        bad.check(),
+        Err(crate::Error::InvalidMesh(MeshDefect::BadAdjacency { .. }))
+    ));
+    let mut bad = m.clone();
+    bad.face_ref[t][i] = 9;
+    assert!(matches!(
+        bad.check(),
+        Err(crate::Error::InvalidMesh(MeshDefect::BadLabel { .. }))
     ));
 }

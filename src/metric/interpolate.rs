@@ -12,20 +12,20 @@
 //! It is the interpolation used for element metrics (`M_K` of 004 §3.3–3.4) and for metric
 //! transfer at new vertices.
 
-use super::Sym2;
+use super::{Sym2, SymTensor};
 
 /// The weighted log-Euclidean mean `exp(Σ w_i ln M_i / Σ w_i)` of the items `(w_i, M_i)`.
 ///
 /// Weights are normalised by their sum. If the sum of weights is not positive and finite (all
 /// zero, say), the unweighted mean is returned; an empty slice gives the identity. The tensors
-/// must be SPD.
-pub fn interpolate_log(items: &[(f64, Sym2)]) -> Sym2 {
+/// must be SPD. Written once for [`Sym2`] and [`super::Sym3`].
+pub fn interpolate_log<const D: usize, S: SymTensor<D>>(items: &[(f64, S)]) -> S {
     if items.is_empty() {
-        return Sym2::IDENTITY;
+        return S::IDENTITY;
     }
     let total: f64 = items.iter().map(|(w, _)| *w).sum();
     let uniform = !(total.is_finite() && total > 0.0);
-    let mut acc = Sym2::default();
+    let mut acc = S::default();
     for (w, m) in items {
         let w = if uniform {
             1.0 / items.len() as f64
@@ -42,7 +42,7 @@ pub fn interpolate_log(items: &[(f64, Sym2)]) -> Sym2 {
 /// Geodesic interpolation `exp((1 - t) ln A + t ln B)` between two SPD metrics in the
 /// log-Euclidean framework: `t = 0` gives `A`, `t = 1` gives `B` (and `t` outside `[0, 1]`
 /// extrapolates).
-pub fn lerp_log(a: &Sym2, b: &Sym2, t: f64) -> Sym2 {
+pub fn lerp_log<const D: usize, S: SymTensor<D>>(a: &S, b: &S, t: f64) -> S {
     a.log().scale(1.0 - t).add(&b.log().scale(t)).exp()
 }
 
@@ -160,7 +160,7 @@ mod tests {
         let a = Sym2::iso(1.0);
         let b = Sym2::iso(0.01);
         assert!(rel_diff(&interpolate_log(&[(0.0, a), (0.0, b)]), &Sym2::iso(0.1)) < 1e-13);
-        assert_eq!(interpolate_log(&[]), Sym2::IDENTITY);
+        assert_eq!(interpolate_log::<2, Sym2>(&[]), Sym2::IDENTITY);
     }
 
     #[test]

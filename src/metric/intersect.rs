@@ -21,42 +21,45 @@
 //! eigenvalue is ever needed. The less anisotropic of the two tensors is used as the base `A`,
 //! which bounds the round-off by its condition number.
 
-use super::Sym2;
-use crate::geom::DVec2;
+use super::SymTensor;
+use crate::geom::Point;
+#[cfg(test)]
+use {super::Sym2, crate::geom::DVec2};
 
 /// `A ∩ B`, the intersection of two SPD metrics by simultaneous reduction (004 §3.5). The result is
 /// symmetric positive definite, satisfies `v^T (A∩B) v >= max(v^T A v, v^T B v)`, and
 /// `intersect(a, a) == a`, `intersect(a, s a) == max(1, s) a` up to round-off.
 ///
-/// Both inputs must be SPD (see [`Sym2::validate`]); otherwise the result is meaningless (NaN).
-pub fn intersect(a: &Sym2, b: &Sym2) -> Sym2 {
+/// Both inputs must be SPD (see [`SymTensor::validate`]); otherwise the result is meaningless
+/// (NaN). Written once for [`super::Sym2`] and [`super::Sym3`].
+pub fn intersect<const D: usize, S: SymTensor<D>>(a: &S, b: &S) -> S {
     let (la, va) = a.eigen();
     let (lb, vb) = b.eigen();
     // The base of the reduction is the better-conditioned tensor.
-    let (base_l, base_v, other) = if la[1] * lb[0] <= lb[1] * la[0] {
+    let (base_l, base_v, other) = if la[D - 1] * lb[0] <= lb[D - 1] * la[0] {
         (la, va, b)
     } else {
         (lb, vb, a)
     };
-    let s = [base_l[0].sqrt(), base_l[1].sqrt()];
+    let s = base_l.map(f64::sqrt);
     // C = P0^T B P0 with P0 = V Λ^{-1/2}, columns v_i / sqrt(λ_i).
-    let c = other.congruence(base_v[0] / s[0], base_v[1] / s[1]);
+    let c = other.congruence(std::array::from_fn(|i| base_v[i] / s[i]));
     let (mu, q) = c.eigen();
-    let d = Sym2::from_eigen([mu[0].max(1.0), mu[1].max(1.0)], q);
-    // A ∩ B = (P0^{-1})^T D P0^{-1}, with P0^{-1} = Λ^{1/2} V^T: its columns are
-    // (sqrt(λ_0) v_0[j], sqrt(λ_1) v_1[j]) for j = x, y.
-    let col = |j: usize| DVec2::new(s[0] * base_v[0][j], s[1] * base_v[1][j]);
-    d.congruence(col(0), col(1))
+    let d = S::from_eigen(mu.map(|m| m.max(1.0)), q);
+    // A ∩ B = (P0^{-1})^T D P0^{-1}, with P0^{-1} = Λ^{1/2} V^T: its column j is
+    // (sqrt(λ_i) v_i[j])_i.
+    let col = |j: usize| S::Vec::from_array(std::array::from_fn(|i| s[i] * base_v[i][j]));
+    d.congruence(std::array::from_fn(col))
 }
 
 /// The largest generalised eigenvalue `max_v (v^T B v) / (v^T A v)` of two SPD tensors: how far
 /// the quadratic form of `b` exceeds that of `a` (`<= 1` exactly when `b <= a`, i.e. the unit ball
 /// of `a` lies inside that of `b`). Computed as the largest eigenvalue of
 /// `Λ_a^{-1/2} V_a^T B V_a Λ_a^{-1/2}`.
-pub fn max_form_ratio(a: &Sym2, b: &Sym2) -> f64 {
+pub fn max_form_ratio<const D: usize, S: SymTensor<D>>(a: &S, b: &S) -> f64 {
     let (la, va) = a.eigen();
-    let c = b.congruence(va[0] / la[0].sqrt(), va[1] / la[1].sqrt());
-    c.eigen().0[1]
+    let c = b.congruence(std::array::from_fn(|i| va[i] / la[i].sqrt()));
+    c.eigen().0[D - 1]
 }
 
 #[cfg(test)]

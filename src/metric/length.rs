@@ -19,19 +19,26 @@
 //! ```
 //!
 //! so that `Q_ani = 1` for an equilateral triangle of unit edge length in `M_K` (`Σ = 3`,
-//! `|K| sqrt(det M_K) = sqrt(3)/4`) and `Q_ani >= 1` otherwise. `M_K` is the log-Euclidean mean of
+//! `|K| sqrt(det M_K) = sqrt(3)/4`) and `Q_ani >= 1` otherwise. In 3D the sum runs over the six
+//! edges and `α_3 = sqrt(3) / 216` (a regular tetrahedron of unit edges: `Σ = 6`,
+//! `|K| = sqrt(2)/12`). `M_K` is the log-Euclidean mean of
 //! the three vertex metrics ([`element_metric`]). `Q_ani` is invariant under any affine map `F`
 //! that carries the metric along (`M' = A^{-T} M A^{-1}` for `F(x) = A x + c`, `det A > 0`).
 
 use rayon::prelude::*;
 
 use super::interpolate::interpolate_log;
-use super::Sym2;
+use super::{Sym2, SymTensor};
+use crate::geom::simplex::{self, simplex_edges};
+#[cfg(test)]
 use crate::geom::DVec2;
 use crate::mesh::Mesh2;
 
 /// `α_2 = sqrt(3) / 12`, the normalisation of [`q_ani`] (004 §3.4).
 pub const ALPHA_2: f64 = 0.144_337_567_297_406_43;
+
+/// `α_3 = sqrt(3) / 216`, the normalisation of [`q_ani`] on tetrahedra.
+pub const ALPHA_3: f64 = 0.008_018_753_738_744_801;
 
 /// Lower end of the unit-length interval `[1/sqrt(2), sqrt(2)]`.
 pub const L_MIN: f64 = std::f64::consts::FRAC_1_SQRT_2;
@@ -41,7 +48,7 @@ pub const L_MAX: f64 = std::f64::consts::SQRT_2;
 /// Length of the edge `[pa, pb]` in the metric field with end values `ma`, `mb`, with the length
 /// density interpolated geometrically: `(ℓ_a - ℓ_b) / ln(ℓ_a / ℓ_b)` where `ℓ_a = |pb - pa|_{ma}`,
 /// `ℓ_b = |pb - pa|_{mb}` (`ℓ_a` when they are equal; see the module documentation).
-pub fn edge_length(pa: DVec2, pb: DVec2, ma: &Sym2, mb: &Sym2) -> f64 {
+pub fn edge_length<const D: usize, S: SymTensor<D>>(pa: S::Vec, pb: S::Vec, ma: &S, mb: &S) -> f64 {
     let e = pb - pa;
     geometric_mean_length(ma.quad(e).sqrt(), mb.quad(e).sqrt())
 }
@@ -62,21 +69,31 @@ pub fn geometric_mean_length(la: f64, lb: f64) -> f64 {
     lo * x / x.ln_1p()
 }
 
-/// `Q_ani` of the triangle `p` in the metric `m` (004 §3.4, `α_2 = sqrt(3)/12`):
-/// `α_2 Σ e_i^T m e_i / (|K| sqrt(det m))`. Equals 1 for a unit equilateral triangle in `m`, is
-/// larger otherwise, and is `+inf` when the signed area is not positive.
-pub fn q_ani(p: [DVec2; 3], m: &Sym2) -> f64 {
-    let area = crate::geom::signed_area(p[0], p[1], p[2]);
-    if area.is_nan() || area <= 0.0 {
+/// `Q_ani` of the simplex `p` (triangle or tetrahedron) in the metric `m` (004 §3.4):
+/// `α_d (Σ_i e_i^T m e_i)^{d/2} / (|K| sqrt(det m))` over the edges `e_i`, with `α_2 = sqrt(3)/12`
+/// and `α_3 = sqrt(3)/216`. Equals 1 for a regular simplex of unit edges in `m`, is larger
+/// otherwise, and is `+inf` when the signed volume is not positive.
+pub fn q_ani<const D: usize, const N: usize, S: SymTensor<D>>(p: [S::Vec; N], m: &S) -> f64 {
+    let vol = simplex::volume(&p);
+    if vol.is_nan() || vol <= 0.0 {
         return f64::INFINITY;
     }
-    let s = m.quad(p[1] - p[0]) + m.quad(p[2] - p[1]) + m.quad(p[0] - p[2]);
-    ALPHA_2 * s / (area * m.det().sqrt())
+    let edges = simplex_edges(N);
+    let [a, b] = edges[0];
+    let mut s = m.quad(p[b] - p[a]);
+    for &[a, b] in &edges[1..] {
+        s += m.quad(p[b] - p[a]);
+    }
+    if D == 2 {
+        ALPHA_2 * s / (vol * m.det().sqrt())
+    } else {
+        ALPHA_3 * (s * s.sqrt()) / (vol * m.det().sqrt())
+    }
 }
 
-/// The element metric `M_K` (004 §3.3): log-Euclidean mean of the three vertex metrics.
-pub fn element_metric(m: [&Sym2; 3]) -> Sym2 {
-    interpolate_log(&[(1.0, *m[0]), (1.0, *m[1]), (1.0, *m[2])])
+/// The element metric `M_K` (004 §3.3): log-Euclidean mean of the vertex metrics of a simplex.
+pub fn element_metric<const D: usize, const N: usize, S: SymTensor<D>>(m: [&S; N]) -> S {
+    interpolate_log(&m.map(|x| (1.0, *x)))
 }
 
 /// Upper bounds of the bins of [`QualityStats::q_ani_histogram`].
@@ -189,6 +206,34 @@ mod tests {
     #[test]
     fn alpha_2_value() {
         assert!((ALPHA_2 - 3f64.sqrt() / 12.0).abs() < 1e-17);
+        assert!((ALPHA_3 - 3f64.sqrt() / 216.0).abs() < 1e-18);
+    }
+
+    #[test]
+    fn q_ani_of_tetrahedra() {
+        use crate::geom::DVec3;
+        use crate::metric::Sym3;
+        // Regular tetrahedron of edge h: Q_ani = 1 in the isotropic metric of any size.
+        let h = 0.3;
+        let p = [
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(1.0, -1.0, -1.0),
+            DVec3::new(-1.0, 1.0, -1.0),
+            DVec3::new(-1.0, -1.0, 1.0),
+        ]
+        .map(|x| x * (h / 8f64.sqrt()));
+        let p = [p[0], p[1], p[3], p[2]];
+        assert!(simplex::volume(&p) > 0.0);
+        for size in [h, 5.0] {
+            assert!((q_ani(p, &Sym3::iso(size)) - 1.0).abs() < 1e-13);
+        }
+        // The unit right tetrahedron: Σ = 3 + 3·2 = 9, |K| = 1/6 → α_3 27 · 6.
+        let r = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        assert!((q_ani(r, &Sym3::IDENTITY) - ALPHA_3 * 27.0 * 6.0).abs() < 1e-13);
+        assert_eq!(
+            q_ani([r[1], r[0], r[2], r[3]], &Sym3::IDENTITY),
+            f64::INFINITY
+        );
     }
 
     #[test]

@@ -14,21 +14,27 @@
 //! absolute values, so that `M` is positive semi-definite; it may still be singular (a straight
 //! interface far from any curvature), which is why the caller applies [`MetricBounds`].
 
-use super::Sym2;
+use super::SymTensor;
 use crate::error::{Error, Result};
-use crate::geom::DVec2;
+#[cfg(test)]
+use {super::Sym2, crate::geom::DVec2};
 
 /// `∇u ∇u^T / hmin² + |D²u| / ε`, 004 eq. (6), unbounded (positive semi-definite; apply
 /// [`MetricBounds::apply`] before use). Needs `hmin > 0` and `ε > 0`; otherwise the entries are
-/// infinite or NaN.
-pub fn geometric_metric(grad: DVec2, hess: &Sym2, hmin: f64, eps: f64) -> Sym2 {
-    Sym2::outer(grad)
+/// infinite or NaN. The same formula in 2D ([`super::Sym2`]) and 3D ([`super::Sym3`]).
+pub fn geometric_metric<const D: usize, S: SymTensor<D>>(
+    grad: S::Vec,
+    hess: &S,
+    hmin: f64,
+    eps: f64,
+) -> S {
+    S::outer(grad)
         .scale(1.0 / (hmin * hmin))
         .add(&hess.abs().scale(1.0 / eps))
 }
 
 /// Size bounds applied to every metric: sizes in `[hmin, hmax]` and size ratio at most
-/// `max_aniso` (see [`Sym2::bound`]).
+/// `max_aniso` (see [`super::Sym2::bound`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MetricBounds {
     pub hmin: f64,
@@ -67,9 +73,9 @@ impl MetricBounds {
     }
 
     /// `m` bounded: eigenvalues clamped to `[1/hmax², 1/hmin²]`, then the anisotropy limited
-    /// ([`Sym2::bound`]).
+    /// ([`SymTensor::bound`]; in 2D exactly [`super::Sym2::bound`]).
     #[inline]
-    pub fn apply(&self, m: &Sym2) -> Sym2 {
+    pub fn apply<const D: usize, S: SymTensor<D>>(&self, m: &S) -> S {
         m.bound(self.hmin, self.hmax, self.max_aniso)
     }
 }

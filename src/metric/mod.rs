@@ -4,6 +4,8 @@
 //! sizes are `h_i = 1/sqrt(λ_i)` along the eigenvectors (004 §3.3). A metric *field* is a
 //! `Vec<Sym2>` indexed by vertex.
 //!
+//! - [`sym`](mod@sym): [`SymTensor`], the trait over `Sym2` and `Sym3` that the generic metric
+//!   mathematics below is written against.
 //! - [`tensor`]: the `Sym2` storage type, closed-form eigen, `log`/`exp`/`powf`, sizes, bounding.
 //! - [`intersect`](mod@intersect): intersection by simultaneous reduction (004 §3.5).
 //! - [`interpolate`]: log-Euclidean means (element metrics, transfer).
@@ -23,6 +25,7 @@ pub mod interpolate;
 pub mod intersect;
 pub mod length;
 pub mod levelset;
+pub mod sym;
 pub mod sym3;
 pub mod tensor;
 
@@ -34,5 +37,6 @@ pub use interpolate::{interpolate_log, lerp_log, lerp_sizes};
 pub use intersect::{intersect, max_form_ratio};
 pub use length::{edge_length, element_metric, q_ani, quality_stats, QualityStats};
 pub use levelset::{geometric_metric, MetricBounds};
+pub use sym::SymTensor;
 pub use sym3::Sym3;
 pub use tensor::Sym2;

@@ -11,12 +11,13 @@
 //! rounding the six stored entries (a perturbation of `ε ‖M‖` moves `λ_min` by as much), not by
 //! the algorithm.
 //!
-//! The operations mirror [`super::Sym2`]: log/exp/powf through the eigenvalues, bounding, and
-//! intersection by simultaneous reduction (004 §3.5).
+//! The operations mirror [`super::Sym2`] (both implement [`super::SymTensor`]); bounding and
+//! intersection by simultaneous reduction (004 §3.5) are the generic ones written once for both.
 
 use glam::DVec3;
 use nalgebra::{Matrix3, SymmetricEigen};
 
+use super::SymTensor;
 use crate::error::{Error, Result};
 
 /// Symmetric 3x3 matrix `[[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]`.
@@ -224,11 +225,7 @@ impl Sym3 {
     /// Sizes clamped to `[hmin, hmax]`, then every eigenvalue raised to at least
     /// `λ_max / max_aniso²` (as [`super::Sym2::bound`]).
     pub fn bound(&self, hmin: f64, hmax: f64, max_aniso: f64) -> Sym3 {
-        let (l, v) = self.eigen();
-        let (lo, hi) = (1.0 / (hmax * hmax), 1.0 / (hmin * hmin));
-        let l = l.map(|x| if x.is_nan() { x } else { x.max(lo).min(hi) });
-        let floor = l[2] / (max_aniso * max_aniso);
-        Sym3::from_eigen(l.map(|x| x.max(floor)), v)
+        SymTensor::bound(self, hmin, hmax, max_aniso)
     }
 
     /// Whether all entries are finite.
@@ -266,20 +263,7 @@ impl Sym3 {
     /// better-conditioned tensor `A = V Λ V^T` as base, `C = Λ^{-1/2} V^T B V Λ^{-1/2} = Q diag(μ)
     /// Q^T` and `A ∩ B = V Λ^{1/2} Q diag(max(1, μ)) Q^T Λ^{1/2} V^T`.
     pub fn intersect(&self, other: &Sym3) -> Sym3 {
-        let (la, va) = self.eigen();
-        let (lb, vb) = other.eigen();
-        let (l, v, o) = if la[2] * lb[0] <= lb[2] * la[0] {
-            (la, va, other)
-        } else {
-            (lb, vb, self)
-        };
-        let s = l.map(f64::sqrt);
-        let c = o.congruence([v[0] / s[0], v[1] / s[1], v[2] / s[2]]);
-        let (mu, q) = c.eigen();
-        let d = Sym3::from_eigen(mu.map(|m| m.max(1.0)), q);
-        // Columns of Λ^{1/2} V^T.
-        let col = |j: usize| DVec3::new(s[0] * v[0][j], s[1] * v[1][j], s[2] * v[2][j]);
-        d.congruence([col(0), col(1), col(2)])
+        super::intersect(self, other)
     }
 }
 

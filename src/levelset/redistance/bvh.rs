@@ -4,15 +4,17 @@
 //! The tree is binary, built top-down by median splits along the longest axis of the centroid box
 //! (O(m log² m)), stored as a flat array of nodes; leaves hold at most [`LEAF`] primitives. A query
 //! is a depth-first branch and bound (nearer child first, boxes pruned when their distance is not
-//! below the best found), O(log m) on average. Coordinates are `[f64; 3]` (z = 0 in 2D).
+//! below the best found), O(log m) on average. Coordinates are `DVec3` (z = 0 in 2D).
+
+use crate::geom::DVec3;
 
 /// Maximum number of primitives in a leaf.
 const LEAF: usize = 4;
 
 #[derive(Debug, Clone, Copy)]
 struct Node {
-    lo: [f64; 3],
-    hi: [f64; 3],
+    lo: DVec3,
+    hi: DVec3,
     /// Leaf: first primitive in `order`; inner node: index of the left child (right = left + 1).
     first: u32,
     /// Number of primitives for a leaf, 0 for an inner node.
@@ -28,7 +30,7 @@ pub(crate) struct Bvh {
 
 /// Squared distance from `p` to the box `[lo, hi]`.
 #[inline]
-fn box_dist2(p: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
+fn box_dist2(p: &DVec3, lo: &DVec3, hi: &DVec3) -> f64 {
     let mut s = 0.0;
     for k in 0..3 {
         let d = (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0);
@@ -39,27 +41,24 @@ fn box_dist2(p: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
 
 impl Bvh {
     /// Build from the bounding boxes `(lo, hi)` of `m >= 1` primitives.
-    pub(crate) fn build(boxes: &[([f64; 3], [f64; 3])]) -> Bvh {
+    pub(crate) fn build(boxes: &[(DVec3, DVec3)]) -> Bvh {
         let m = boxes.len();
-        let centre: Vec<[f64; 3]> = boxes
-            .iter()
-            .map(|(lo, hi)| std::array::from_fn(|k| 0.5 * (lo[k] + hi[k])))
-            .collect();
+        let centre: Vec<DVec3> = boxes.iter().map(|(lo, hi)| (*lo + *hi) * 0.5).collect();
         let mut order: Vec<u32> = (0..m as u32).collect();
         let mut nodes = Vec::with_capacity(2 * m / LEAF + 2);
         nodes.push(Node {
-            lo: [0.0; 3],
-            hi: [0.0; 3],
+            lo: DVec3::ZERO,
+            hi: DVec3::ZERO,
             first: 0,
             count: 0,
         });
         // Explicit stack of (node, start, end) to avoid recursion depth limits.
         let mut stack = vec![(0usize, 0usize, m)];
         while let Some((ni, s, e)) = stack.pop() {
-            let mut lo = [f64::INFINITY; 3];
-            let mut hi = [f64::NEG_INFINITY; 3];
-            let mut clo = [f64::INFINITY; 3];
-            let mut chi = [f64::NEG_INFINITY; 3];
+            let mut lo = DVec3::INFINITY;
+            let mut hi = DVec3::NEG_INFINITY;
+            let mut clo = DVec3::INFINITY;
+            let mut chi = DVec3::NEG_INFINITY;
             for &i in &order[s..e] {
                 let (bl, bh) = &boxes[i as usize];
                 let c = &centre[i as usize];
@@ -105,7 +104,7 @@ impl Bvh {
     #[inline]
     pub(crate) fn nearest(
         &self,
-        p: &[f64; 3],
+        p: &DVec3,
         hint: u32,
         dist: impl Fn(u32) -> f64,
         stack: &mut Vec<u32>,
@@ -161,21 +160,21 @@ mod tests {
     #[test]
     fn nearest_matches_brute_force_on_points() {
         // Primitives are points on a spiral; compare with brute force for many queries.
-        let pts: Vec<[f64; 3]> = (0..500)
+        let pts: Vec<DVec3> = (0..500)
             .map(|i| {
                 let t = i as f64 * 0.1;
-                [t.cos() * (0.1 + 0.01 * t), t.sin() * (0.1 + 0.01 * t), 0.0]
+                DVec3::new(t.cos() * (0.1 + 0.01 * t), t.sin() * (0.1 + 0.01 * t), 0.0)
             })
             .collect();
         let boxes: Vec<_> = pts.iter().map(|p| (*p, *p)).collect();
         let bvh = Bvh::build(&boxes);
         let mut stack = Vec::new();
         for q in 0..400 {
-            let p = [
+            let p = DVec3::new(
                 (q as f64 * 0.37).sin() * 0.8,
                 (q as f64 * 0.91).cos() * 0.8,
                 0.0,
-            ];
+            );
             let dist = |i: u32| {
                 let a = pts[i as usize];
                 ((a[0] - p[0]).powi(2) + (a[1] - p[1]).powi(2)).sqrt()

@@ -11,7 +11,7 @@ use std::collections::BinaryHeap;
 
 use nalgebra::{Matrix2, Matrix3};
 
-use super::simplices::{norm, sub};
+use crate::geom::DVec3;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Key(f64, u32);
@@ -30,12 +30,12 @@ impl Ord for Key {
 /// The face solution from the known vertices `sel` (2 or 3 of them): the `u_0` with
 /// `(u - u_0 1)^T Q^{-1} (u - u_0 1) = 1`, `Q = E^T E`, `E = [x_i - x_0]`, if its characteristic
 /// passes through the face (`μ = Q^{-1}(u - u_0 1) <= 0`).
-fn face_solution(x0: &[f64; 3], sel: &[([f64; 3], f64)]) -> Option<f64> {
+fn face_solution(x0: &DVec3, sel: &[(DVec3, f64)]) -> Option<f64> {
     let k = sel.len();
-    let mut e = [[0.0; 3]; 3];
+    let mut e = [DVec3::ZERO; 3];
     let mut u = [0.0; 3];
     for (i, (x, v)) in sel.iter().enumerate() {
-        e[i] = sub(x, x0);
+        e[i] = *x - *x0;
         u[i] = *v;
     }
     let q = |i: usize, j: usize| e[i][0] * e[j][0] + e[i][1] * e[j][1] + e[i][2] * e[j][2];
@@ -71,10 +71,10 @@ fn face_solution(x0: &[f64; 3], sel: &[([f64; 3], f64)]) -> Option<f64> {
 
 /// The eikonal update of `x0` from the known vertices `known = [(x_i, u_i)]` of one simplex:
 /// the minimum over every non-empty subset (vertex, edge or face) of its admissible solution.
-pub(crate) fn local_update(x0: &[f64; 3], known: &[([f64; 3], f64)]) -> f64 {
+pub(crate) fn local_update(x0: &DVec3, known: &[(DVec3, f64)]) -> f64 {
     let m = known.len();
     let mut best = f64::INFINITY;
-    let mut sel = [([0.0; 3], 0.0); 3];
+    let mut sel = [(DVec3::ZERO, 0.0); 3];
     for mask in 1u32..(1 << m) {
         let mut k = 0;
         for (i, kn) in known.iter().enumerate() {
@@ -84,7 +84,7 @@ pub(crate) fn local_update(x0: &[f64; 3], known: &[([f64; 3], f64)]) -> f64 {
             }
         }
         if k == 1 {
-            best = best.min(sel[0].1 + norm(&sub(&sel[0].0, x0)));
+            best = best.min(sel[0].1 + (sel[0].0 - *x0).length());
         } else if let Some(u0) = face_solution(x0, &sel[..k]) {
             best = best.min(u0);
         }
@@ -96,7 +96,7 @@ pub(crate) fn local_update(x0: &[f64; 3], known: &[([f64; 3], f64)]) -> f64 {
 /// the frozen values `known[i] = Some(|d_i|)` of the initial band. Nodes not connected to the band
 /// get `f64::INFINITY`.
 pub(crate) fn fast_marching(
-    points: &[[f64; 3]],
+    points: &[DVec3],
     cells: &[u32],
     nv: usize,
     known: &[Option<f64>],
@@ -129,7 +129,7 @@ pub(crate) fn fast_marching(
     // The update of node `b` from the accepted nodes of one cell `c`.
     let cell_update = |b: usize, c: usize, val: &[f64], done: &[bool]| -> f64 {
         let cell = &cells[c * nv..(c + 1) * nv];
-        let mut kn = [([0.0; 3], 0.0); 3];
+        let mut kn = [(DVec3::ZERO, 0.0); 3];
         let mut k = 0;
         for &w in cell {
             if w as usize != b && done[w as usize] && k < 3 {
@@ -204,13 +204,17 @@ mod tests {
     fn face_update_reproduces_plane_distance() {
         // Known values of the distance to the plane x = 0 at three points; the update at x0 must
         // give x0.x exactly when the characteristic passes through the face.
-        let pts = [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 1.0]];
+        let pts = [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(1.0, 0.0, 1.0),
+        ];
         let kn: Vec<_> = pts.iter().map(|p| (*p, p[0])).collect();
-        let x0 = [1.7, 0.2, 0.3];
+        let x0 = DVec3::new(1.7, 0.2, 0.3);
         assert!((local_update(&x0, &kn) - 1.7).abs() < 1e-14);
         // Obtuse case: the foot point is outside the face, so the face solution is rejected and
         // the answer is an edge/vertex update (>= the true distance 1.7).
-        let x1 = [1.7, 3.0, 3.0];
+        let x1 = DVec3::new(1.7, 3.0, 3.0);
         let u = local_update(&x1, &kn);
         assert!(u >= 1.7 - 1e-14 && u.is_finite());
     }

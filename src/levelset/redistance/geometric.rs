@@ -125,27 +125,24 @@ pub fn redistance_geometric(mesh: &Mesh2, u: &[f64]) -> Result<Vec<f64>> {
             u.iter().copied().fold(f64::NEG_INFINITY, f64::max)
         )));
     }
-    let pts3: Vec<[f64; 3]> = mesh.points.iter().map(|p| [p.x, p.y, 0.0]).collect();
+    let pts3: Vec<DVec3> = mesh.points.iter().map(|p| p.extend(0.0)).collect();
     let boxes: Vec<_> = segs
         .iter()
-        .map(|[a, b]| {
-            let (lo, hi) = (a.min(*b), a.max(*b));
-            ([lo.x, lo.y, 0.0], [hi.x, hi.y, 0.0])
-        })
+        .map(|[a, b]| (a.min(*b).extend(0.0), a.max(*b).extend(0.0)))
         .collect();
     let bvh = Bvh::build(&boxes);
     let dist = distances(&pts3, &bvh, |p, i| {
         let [a, b] = segs[i as usize];
-        point_segment_distance(DVec2::new(p[0], p[1]), a, b).0
+        point_segment_distance(p.truncate(), a, b).0
     });
     Ok(apply_sign(u, dist))
 }
 
 /// Unsigned distances of `points` to the primitives of `bvh`, parallel over fixed chunks.
 pub(crate) fn distances(
-    points: &[[f64; 3]],
+    points: &[DVec3],
     bvh: &Bvh,
-    dist: impl Fn(&[f64; 3], u32) -> f64 + Sync,
+    dist: impl Fn(&DVec3, u32) -> f64 + Sync,
 ) -> Vec<f64> {
     let mut out = vec![0.0; points.len()];
     out.par_chunks_mut(CHUNK)
@@ -311,14 +308,13 @@ pub fn redistance_geometric_3d(points: &[DVec3], tets: &[[u32; 4]], u: &[f64]) -
         .map(|t| {
             let lo = t[0].min(t[1]).min(t[2]);
             let hi = t[0].max(t[1]).max(t[2]);
-            (lo.to_array(), hi.to_array())
+            (lo, hi)
         })
         .collect();
     let bvh = Bvh::build(&boxes);
-    let pts3: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
-    let dist = distances(&pts3, &bvh, |p, i| {
+    let dist = distances(points, &bvh, |p, i| {
         let [a, b, c] = tris[i as usize];
-        point_triangle_distance(DVec3::from_array(*p), a, b, c)
+        point_triangle_distance(*p, a, b, c)
     });
     Ok(apply_sign(u, dist))
 }

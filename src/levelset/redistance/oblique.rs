@@ -19,7 +19,8 @@
 //!   not converged.
 
 use super::ppr::Recovery;
-use super::simplices::{axpy, dot, norm, sub, Simplices};
+use super::simplices::Simplices;
+use crate::geom::DVec3;
 
 /// Largest accepted `|α|` and `|d_h(z)|`, in units of the home cell's diameter `h`.
 const ROOT_LIMIT: f64 = 2.0;
@@ -51,7 +52,7 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     /// `φ_h(x)`, `(G_h φ_h)(x)` and the containing cell, or `None` outside the mesh.
-    fn probe(&self, x: &[f64; 3], hint: &mut u32) -> Option<(f64, [f64; 3])> {
+    fn probe(&self, x: &DVec3, hint: &mut u32) -> Option<(f64, DVec3)> {
         let (c, lam) = self.sx.locate(x, *hint)?;
         *hint = c;
         Some((
@@ -60,13 +61,13 @@ impl Ctx<'_> {
         ))
     }
 
-    fn normal(&self, x: &[f64; 3], hint: &mut u32) -> Option<[f64; 3]> {
+    fn normal(&self, x: &DVec3, hint: &mut u32) -> Option<DVec3> {
         let (_, g) = self.probe(x, hint)?;
-        let l = norm(&g);
-        (l > 0.0 && l.is_finite()).then(|| g.map(|t| t / l))
+        let l = g.length();
+        (l > 0.0 && l.is_finite()).then(|| g / l)
     }
 
-    fn phi_at(&self, x: &[f64; 3], hint: &mut u32) -> Option<f64> {
+    fn phi_at(&self, x: &DVec3, hint: &mut u32) -> Option<f64> {
         let (c, lam) = self.sx.locate(x, *hint)?;
         *hint = c;
         Some(self.sx.eval(c as usize, &lam, self.phi))
@@ -75,20 +76,20 @@ impl Ctx<'_> {
     /// Damped approximate Newton (6.10) for `φ_h(z - α n) = 0` from `alpha`.
     fn newton(
         &self,
-        z: &[f64; 3],
-        n: &[f64; 3],
+        z: &DVec3,
+        n: &DVec3,
         mut alpha: f64,
         h: f64,
         p: &ObliqueParams,
         hint: &mut u32,
     ) -> Option<f64> {
         for _ in 0..p.max_newton {
-            let y = axpy(z, -alpha, n);
+            let y = *z + *n * -alpha;
             let (f, g) = self.probe(&y, hint)?;
             if f == 0.0 {
                 return Some(alpha);
             }
-            let slope = dot(&g, n);
+            let slope = g.dot(*n);
             if slope.is_nan() || slope <= 0.0 {
                 return None;
             }
@@ -107,14 +108,14 @@ impl Ctx<'_> {
     /// Bracketing fallback: the zero of `α ↦ φ_h(z - α n)` of smallest `|α|` in `[-3h, 3h]`.
     fn bracket(
         &self,
-        z: &[f64; 3],
-        n: &[f64; 3],
+        z: &DVec3,
+        n: &DVec3,
         h: f64,
         p: &ObliqueParams,
         hint: &mut u32,
     ) -> Option<f64> {
         let step = h / 8.0;
-        let f = |a: f64, hint: &mut u32| self.phi_at(&axpy(z, -a, n), hint);
+        let f = |a: f64, hint: &mut u32| self.phi_at(&(*z + *n * -a), hint);
         let f0 = f(0.0, hint)?;
         if f0 == 0.0 {
             return Some(0.0);
@@ -171,8 +172,8 @@ impl Ctx<'_> {
     /// Line search: damped Newton, bracketing if it fails. Returns `(α, bracketed)`.
     fn line(
         &self,
-        z: &[f64; 3],
-        n: &[f64; 3],
+        z: &DVec3,
+        n: &DVec3,
         alpha: f64,
         h: f64,
         p: &ObliqueParams,
@@ -194,7 +195,7 @@ pub(crate) fn project(
     sx: &Simplices,
     phi: &[f64],
     rec: &Recovery,
-    z: &[f64; 3],
+    z: &DVec3,
     phi_z: f64,
     cell: u32,
     h: f64,
@@ -214,7 +215,7 @@ pub(crate) fn project(
     // A first-order guess, used when everything else fails: φ / |G_h φ_h| at z.
     let fallback = cell_guess(sx, phi, cell, z, phi_z, h);
     let g0 = rec.at_node_or_cell(sx, cell, z);
-    let mut guess = phi_z / norm(&g0);
+    let mut guess = phi_z / g0.length();
     if !guess.is_finite() || guess.abs() > h {
         guess = fallback;
     }
@@ -227,7 +228,7 @@ pub(crate) fn project(
         return out;
     };
     out.bracketed |= br;
-    let mut x = axpy(z, -alpha, &n0);
+    let mut x = *z + n0 * -alpha;
     for k in 0..p.max_outer {
         out.outer_iterations = k + 1;
         let Some(nk) = ctx.normal(&x, &mut hint) else {
@@ -238,8 +239,8 @@ pub(crate) fn project(
         };
         out.bracketed |= br;
         alpha = a;
-        let xn = axpy(z, -alpha, &nk);
-        let moved = norm(&sub(&xn, &x));
+        let xn = *z + nk * -alpha;
+        let moved = (xn - x).length();
         x = xn;
         if moved <= p.tol * h {
             out.converged = true;
@@ -248,7 +249,7 @@ pub(crate) fn project(
     }
     // d_h(z) = <z - p_h(z), n_h(p_h(z))>.
     if let Some(np) = ctx.normal(&x, &mut hint) {
-        out.d = dot(&sub(z, &x), &np);
+        out.d = (*z - x).dot(np);
     } else {
         out.d = alpha;
         out.converged = false;
@@ -262,9 +263,9 @@ pub(crate) fn project(
 
 /// The first-order value `φ_h(z) / |∇φ_h(z)|` with the gradient of `φ_h` in the cut cell `cell`,
 /// clamped to `[-h, h]` (also when the gradient vanishes).
-fn cell_guess(sx: &Simplices, phi: &[f64], cell: u32, z: &[f64; 3], phi_z: f64, h: f64) -> f64 {
+fn cell_guess(sx: &Simplices, phi: &[f64], cell: u32, z: &DVec3, phi_z: f64, h: f64) -> f64 {
     let lam = sx.bary(cell as usize, z);
-    let g = norm(&sx.grad_in(cell as usize, &lam, phi));
+    let g = sx.grad_in(cell as usize, &lam, phi).length();
     let d = phi_z / g;
     if d.is_finite() {
         d.clamp(-h, h)
@@ -275,7 +276,7 @@ fn cell_guess(sx: &Simplices, phi: &[f64], cell: u32, z: &[f64; 3], phi_z: f64, 
 
 impl Recovery<'_> {
     /// `G_h φ_h` at a point `z` of cell `cell` (used for the first-order guess).
-    fn at_node_or_cell(&self, sx: &Simplices, cell: u32, z: &[f64; 3]) -> [f64; 3] {
+    fn at_node_or_cell(&self, sx: &Simplices, cell: u32, z: &DVec3) -> DVec3 {
         let lam = sx.bary(cell as usize, z);
         self.at(cell as usize, &lam)
     }

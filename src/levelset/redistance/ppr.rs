@@ -18,12 +18,13 @@ use std::sync::OnceLock;
 
 use nalgebra::{DMatrix, DVector};
 
-use super::simplices::{norm, sub, Simplices};
+use super::simplices::Simplices;
+use crate::geom::DVec3;
 
 /// A fitted polynomial in the scaled local coordinates `ξ = (x - centre) / scale`.
 #[derive(Debug, Clone)]
 pub(crate) struct Poly {
-    centre: [f64; 3],
+    centre: DVec3,
     scale: f64,
     exps: Vec<[u8; 3]>,
     coef: Vec<f64>,
@@ -31,9 +32,9 @@ pub(crate) struct Poly {
 
 impl Poly {
     /// Gradient (in `x`) at `x`.
-    pub(crate) fn grad(&self, x: &[f64; 3]) -> [f64; 3] {
-        let xi = sub(x, &self.centre).map(|t| t / self.scale);
-        let mut g = [0.0; 3];
+    pub(crate) fn grad(&self, x: &DVec3) -> DVec3 {
+        let xi = (*x - self.centre) / self.scale;
+        let mut g = DVec3::ZERO;
         for (e, &c) in self.exps.iter().zip(&self.coef) {
             for d in 0..3 {
                 if e[d] == 0 {
@@ -47,7 +48,7 @@ impl Poly {
                 g[d] += t;
             }
         }
-        g.map(|t| t / self.scale)
+        g / self.scale
     }
 }
 
@@ -76,9 +77,9 @@ fn monomials(dim: usize, deg: usize, no_mixed_top: bool) -> Vec<[u8; 3]> {
 
 /// Least-squares fit of `exps` to `(points, values)`; `None` when rank deficient.
 fn lsq(
-    centre: &[f64; 3],
+    centre: &DVec3,
     scale: f64,
-    pts: &[[f64; 3]],
+    pts: &[DVec3],
     vals: &[f64],
     exps: &[[u8; 3]],
 ) -> Option<Vec<f64>> {
@@ -87,7 +88,7 @@ fn lsq(
         return None;
     }
     let a = DMatrix::from_fn(m, n, |i, j| {
-        let xi = sub(&pts[i], centre).map(|t| t / scale);
+        let xi = (pts[i] - *centre) / scale;
         let e = exps[j];
         xi[0].powi(e[0] as i32) * xi[1].powi(e[1] as i32) * xi[2].powi(e[2] as i32)
     });
@@ -111,7 +112,7 @@ pub(crate) struct Recovery<'a> {
     sx: &'a Simplices,
     f: &'a [f64],
     polys: Vec<OnceLock<Box<Poly>>>,
-    grads: Vec<OnceLock<[f64; 3]>>,
+    grads: Vec<OnceLock<DVec3>>,
     /// Number of vertex fits that needed the fallback.
     pub fallbacks: AtomicUsize,
 }
@@ -129,7 +130,7 @@ impl<'a> Recovery<'a> {
 
     /// A recovery whose nodal gradients are already known (P1: one per vertex), e.g. from
     /// [`crate::recovery::gradient_ppr`].
-    pub(crate) fn with_node_grads(sx: &'a Simplices, f: &'a [f64], grads: &[[f64; 3]]) -> Self {
+    pub(crate) fn with_node_grads(sx: &'a Simplices, f: &'a [f64], grads: &[DVec3]) -> Self {
         let r = Self::new(sx, f);
         for (cell, g) in r.grads.iter().zip(grads) {
             let _ = cell.set(*g);
@@ -166,11 +167,11 @@ impl<'a> Recovery<'a> {
                 nodes = self.patch_nodes(&verts);
                 fallback = true;
             }
-            let pts: Vec<[f64; 3]> = nodes.iter().map(|&n| sx.node_points[n as usize]).collect();
+            let pts: Vec<DVec3> = nodes.iter().map(|&n| sx.node_points[n as usize]).collect();
             let vals: Vec<f64> = nodes.iter().map(|&n| self.f[n as usize]).collect();
             let scale = pts
                 .iter()
-                .map(|p| norm(&sub(p, &centre)))
+                .map(|p| (*p - centre).length())
                 .fold(0.0, f64::max)
                 .max(f64::MIN_POSITIVE);
             let mut tries = vec![(deg, false)];
@@ -207,7 +208,7 @@ impl<'a> Recovery<'a> {
     }
 
     /// `(G_h φ_h)` at node `n` (a vertex, or for P2 an edge midpoint).
-    pub(crate) fn at_node(&self, n: u32) -> [f64; 3] {
+    pub(crate) fn at_node(&self, n: u32) -> DVec3 {
         *self.grads[n as usize].get_or_init(|| {
             let nvert = self.sx.points.len();
             if (n as usize) < nvert {
@@ -216,13 +217,13 @@ impl<'a> Recovery<'a> {
                 let [a, b] = self.sx.edges[n as usize - nvert];
                 let x = self.sx.node_points[n as usize];
                 let (ga, gb) = (self.poly(a).grad(&x), self.poly(b).grad(&x));
-                std::array::from_fn(|k| 0.5 * (ga[k] + gb[k]))
+                (ga + gb) * 0.5
             }
         })
     }
 
     /// `(G_h φ_h)(x)` for `x` at barycentric coordinates `lam` of cell `c`, eq. (6.3).
-    pub(crate) fn at(&self, c: usize, lam: &[f64; 4]) -> [f64; 3] {
+    pub(crate) fn at(&self, c: usize, lam: &[f64; 4]) -> DVec3 {
         self.sx.eval_vec(c, lam, |n| self.at_node(n))
     }
 }

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use super::fmm::fast_marching;
 use super::oblique::{project, ObliqueParams};
 use super::ppr::Recovery;
-use super::simplices::{norm, Simplices};
+use super::simplices::Simplices;
 use crate::error::{Error, Result};
 use crate::fem::lagrange::P2Dofs;
 use crate::geom::DVec3;
@@ -125,14 +125,14 @@ pub fn redistance_ppr(mesh: &Mesh2, phi: &[f64], opts: &PprOptions) -> Result<Pp
         mesh.n_points()
     };
     validate(phi, n_nodes, opts)?;
-    let pts = mesh.points.iter().map(|p| [p.x, p.y, 0.0]).collect();
+    let pts = mesh.points.iter().map(|p| p.extend(0.0)).collect();
     let cells = mesh.live_tris().flat_map(|t| mesh.tris[t]).collect();
     let sx = Simplices::new(2, pts, cells, opts.degree)?;
     if opts.degree == 1 {
         // P1 on triangles: the recovery module's PPR (same fit, 003 §6.2).
-        let g: Vec<[f64; 3]> = crate::recovery::gradient_ppr(mesh, phi)?
+        let g: Vec<DVec3> = crate::recovery::gradient_ppr(mesh, phi)?
             .iter()
-            .map(|g| [g.x, g.y, 0.0])
+            .map(|g| g.extend(0.0))
             .collect();
         return run(&sx, phi, opts, Recovery::with_node_grads(&sx, phi, &g));
     }
@@ -153,7 +153,7 @@ pub fn redistance_ppr_3d(
         points.len()
     };
     validate(phi, n_nodes, opts)?;
-    let pts = points.iter().map(|p| p.to_array()).collect();
+    let pts = points.to_vec();
     let cells = tets.iter().flatten().copied().collect();
     let sx = Simplices::new(3, pts, cells, opts.degree)?;
     run(&sx, phi, opts, Recovery::new(&sx, phi))
@@ -286,7 +286,7 @@ fn run(sx: &Simplices, phi: &[f64], opts: &PprOptions, rec: Recovery) -> Result<
 /// `(|T|^{-1} ∫_T |∇f|²)^{1/2}` on cell `c`, exact for P1 and P2 (degree-2 quadrature).
 pub(crate) fn mean_grad_norm(sx: &Simplices, c: usize, f: &[f64]) -> f64 {
     if sx.degree == 1 {
-        return norm(&sx.grad_in(c, &[0.25; 4], f));
+        return sx.grad_in(c, &[0.25; 4], f).length();
     }
     let pts: Vec<[f64; 4]> = if sx.dim == 2 {
         vec![
@@ -302,7 +302,7 @@ pub(crate) fn mean_grad_norm(sx: &Simplices, c: usize, f: &[f64]) -> f64 {
     pts.iter()
         .map(|l| {
             let g = sx.grad_in(c, l, f);
-            w * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2])
+            w * g.length_squared()
         })
         .sum::<f64>()
         .sqrt()

@@ -1,11 +1,13 @@
 //! A dimension-generic read-only view of a conforming simplicial mesh (triangles or tetrahedra)
 //! carrying a P1 or P2 field: face neighbours, vertex-to-cell adjacency, nodes, point location and
-//! evaluation of finite element functions. Points are `[f64; 3]` (z = 0 in 2D).
+//! evaluation of finite element functions. Points are `DVec3` (z = 0 in 2D); the per-cell
+//! geometry is that of [`crate::geom::simplex`].
 
 use std::collections::HashMap;
 
 use crate::error::{Error, Result};
 use crate::fem::lagrange::{self, P2Dofs};
+use crate::geom::simplex::{self, simplex_edges};
 use crate::geom::{DVec2, DVec3};
 use crate::mesh::NONE;
 
@@ -16,7 +18,7 @@ pub(crate) struct Simplices {
     pub nv: usize,
     /// Polynomial degree of the field (1 or 2).
     pub degree: usize,
-    pub points: Vec<[f64; 3]>,
+    pub points: Vec<DVec3>,
     pub cells: Vec<u32>,
     pub nbr: Vec<u32>,
     pub v2c_off: Vec<usize>,
@@ -24,33 +26,16 @@ pub(crate) struct Simplices {
     /// Dofs per cell: `nv` (P1) or `nv + edges` (P2).
     pub npc: usize,
     pub cell_nodes: Vec<u32>,
-    pub node_points: Vec<[f64; 3]>,
+    pub node_points: Vec<DVec3>,
     /// For P2: the two vertices of each edge node (`node - n_vertices`).
     pub edges: Vec<[u32; 2]>,
-}
-
-#[inline]
-pub(crate) fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline]
-pub(crate) fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-#[inline]
-pub(crate) fn norm(a: &[f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-#[inline]
-pub(crate) fn axpy(x: &[f64; 3], t: f64, d: &[f64; 3]) -> [f64; 3] {
-    [x[0] + t * d[0], x[1] + t * d[1], x[2] + t * d[2]]
 }
 
 impl Simplices {
     /// Build from a cell list (stride `dim + 1`) over `points`. Cells must be live (no tombstones).
     pub(crate) fn new(
         dim: usize,
-        points: Vec<[f64; 3]>,
+        points: Vec<DVec3>,
         cells: Vec<u32>,
         degree: usize,
     ) -> Result<Self> {
@@ -114,7 +99,9 @@ impl Simplices {
             let mut np = points.clone();
             for &[a, b] in &dofs.edges {
                 let (pa, pb) = (points[a as usize], points[b as usize]);
-                np.push(std::array::from_fn(|k| 0.5 * (pa[k] + pb[k])));
+                np.push(DVec3::from_array(std::array::from_fn(|k| {
+                    0.5 * (pa[k] + pb[k])
+                })));
             }
             (dofs.dofs_per_cell, dofs.cell_dofs, np, dofs.edges)
         };
@@ -147,52 +134,51 @@ impl Simplices {
     pub(crate) fn cells_of(&self, v: u32) -> &[u32] {
         &self.v2c[self.v2c_off[v as usize]..self.v2c_off[v as usize + 1]]
     }
-    fn corner(&self, c: usize, i: usize) -> [f64; 3] {
+    fn corner(&self, c: usize, i: usize) -> DVec3 {
         self.points[self.cells[c * self.nv + i] as usize]
     }
 
+    /// The corners of triangle `c` in the plane.
+    fn tri(&self, c: usize) -> [DVec2; 3] {
+        std::array::from_fn(|i| self.corner(c, i).truncate())
+    }
+
+    /// The corners of tetrahedron `c`.
+    fn tet(&self, c: usize) -> [DVec3; 4] {
+        std::array::from_fn(|i| self.corner(c, i))
+    }
+
     /// Barycentric coordinates of `x` in cell `c` (first `nv` entries used).
-    pub(crate) fn bary(&self, c: usize, x: &[f64; 3]) -> [f64; 4] {
+    pub(crate) fn bary(&self, c: usize, x: &DVec3) -> [f64; 4] {
         if self.dim == 2 {
-            let p = |i| {
-                let q = self.corner(c, i);
-                DVec2::new(q[0], q[1])
-            };
-            let l = lagrange::bary_tri([p(0), p(1), p(2)], DVec2::new(x[0], x[1]));
+            let l = simplex::barycentric(&self.tri(c), x.truncate());
             [l[0], l[1], l[2], 0.0]
         } else {
-            let p = |i| DVec3::from_array(self.corner(c, i));
-            lagrange::bary_tet([p(0), p(1), p(2), p(3)], DVec3::from_array(*x))
+            simplex::barycentric(&self.tet(c), *x)
         }
     }
 
     /// Gradients of the barycentric coordinates of cell `c`.
-    pub(crate) fn bary_grads(&self, c: usize) -> [[f64; 3]; 4] {
+    pub(crate) fn bary_grads(&self, c: usize) -> [DVec3; 4] {
         if self.dim == 2 {
-            let p = |i| {
-                let q = self.corner(c, i);
-                DVec2::new(q[0], q[1])
-            };
-            let g = lagrange::bary_grads_tri([p(0), p(1), p(2)]);
+            let g = simplex::p1_gradients(&self.tri(c));
             [
-                [g[0].x, g[0].y, 0.0],
-                [g[1].x, g[1].y, 0.0],
-                [g[2].x, g[2].y, 0.0],
-                [0.0; 3],
+                g[0].extend(0.0),
+                g[1].extend(0.0),
+                g[2].extend(0.0),
+                DVec3::ZERO,
             ]
         } else {
-            let p = |i| DVec3::from_array(self.corner(c, i));
-            lagrange::bary_grads_tet([p(0), p(1), p(2), p(3)]).map(|v| v.to_array())
+            simplex::p1_gradients(&self.tet(c))
         }
     }
 
     /// Longest edge of cell `c`.
     pub(crate) fn diameter(&self, c: usize) -> f64 {
-        let mut h: f64 = 0.0;
-        for &[i, j] in lagrange::simplex_edges(self.nv) {
-            h = h.max(norm(&sub(&self.corner(c, i), &self.corner(c, j))));
-        }
-        h
+        simplex_edges(self.nv)
+            .iter()
+            .map(|&[i, j]| (self.corner(c, j) - self.corner(c, i)).length())
+            .fold(0.0, f64::max)
     }
 
     /// Shape function values at barycentric coordinates `lam` (P1 or P2), into `out[..npc]`.
@@ -205,19 +191,20 @@ impl Simplices {
     }
 
     /// Gradient of the field with nodal values `f` in cell `c` at barycentric coordinates `lam`.
-    pub(crate) fn grad_in(&self, c: usize, lam: &[f64; 4], f: &[f64]) -> [f64; 3] {
+    pub(crate) fn grad_in(&self, c: usize, lam: &[f64; 4], f: &[f64]) -> DVec3 {
         let g = self.bary_grads(c);
         let nodes = self.nodes(c);
-        let mut out = [0.0; 3];
+        let mut out = DVec3::ZERO;
         if self.degree == 1 {
             for i in 0..self.nv {
-                out = axpy(&out, f[nodes[i] as usize], &g[i]);
+                out += g[i] * f[nodes[i] as usize];
             }
         } else {
+            let ga = g.map(|v| v.to_array());
             let mut sg = [[0.0; 3]; 10];
-            lagrange::p2_grads(&lam[..self.nv], &g[..self.nv], &mut sg[..self.npc]);
+            lagrange::p2_grads(&lam[..self.nv], &ga[..self.nv], &mut sg[..self.npc]);
             for k in 0..self.npc {
-                out = axpy(&out, f[nodes[k] as usize], &sg[k]);
+                out += DVec3::from_array(sg[k]) * f[nodes[k] as usize];
             }
         }
         out
@@ -225,7 +212,7 @@ impl Simplices {
 
     /// The cell containing `x` (and its barycentric coordinates), by a straight walk from `start`;
     /// `None` when `x` is outside the mesh. Falls back to a scan when the walk cycles.
-    pub(crate) fn locate(&self, x: &[f64; 3], start: u32) -> Option<(u32, [f64; 4])> {
+    pub(crate) fn locate(&self, x: &DVec3, start: u32) -> Option<(u32, [f64; 4])> {
         const EPS: f64 = 1e-12;
         let mut c = start as usize;
         for _ in 0..4096 {
@@ -265,17 +252,12 @@ impl Simplices {
     }
 
     /// Value of a vector field with nodal values `g` at `lam` in cell `c`.
-    pub(crate) fn eval_vec(
-        &self,
-        c: usize,
-        lam: &[f64; 4],
-        g: impl Fn(u32) -> [f64; 3],
-    ) -> [f64; 3] {
+    pub(crate) fn eval_vec(&self, c: usize, lam: &[f64; 4], g: impl Fn(u32) -> DVec3) -> DVec3 {
         let mut s = [0.0; 10];
         self.shape(lam, &mut s);
-        let mut out = [0.0; 3];
+        let mut out = DVec3::ZERO;
         for (k, &n) in self.nodes(c).iter().enumerate() {
-            out = axpy(&out, s[k], &g(n));
+            out += g(n) * s[k];
         }
         out
     }
