@@ -5,7 +5,7 @@
 use super::kernel;
 use super::sources::MetricSource;
 use crate::geom::DVec2;
-use crate::mesh::{next, prev, Mesh2, NONE};
+use crate::mesh::{next, prev, EditListener, Mesh2, NONE};
 use crate::metric::length::geometric_mean_length;
 use crate::metric::Sym2;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
@@ -317,40 +317,50 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// Appends a vertex at `p` with metric `m` and field values from `self.scratch_f`.
-    pub(crate) fn push_vertex(&mut self, p: DVec2, m: Sym2, vref: i32) -> u32 {
-        let v = self.mesh.points.len() as u32;
-        self.mesh.points.push(p);
-        self.mesh.vert_ref.push(vref);
-        self.mesh.corner.push(false);
-        self.mesh.required.push(false);
-        self.mesh.vert_tri.push(NONE);
-        self.metric.push(m);
-        if !self.fast_q {
-            self.logm.push(m.log());
-        }
-        for (f, &x) in self.fields.iter_mut().zip(&self.scratch_f) {
-            f.push(x);
-        }
-        self.vstamp.push(self.gen);
-        self.vmod.push(self.gen);
-        v
-    }
-
     /// Marks triangle `t` (with its current vertices) as modified in this pass.
     #[inline]
     pub(crate) fn touch(&mut self, t: u32) {
-        let tu = t as usize;
-        if self.tstamp[tu] != self.gen {
-            self.log.push(t);
-        }
-        self.tstamp[tu] = self.gen;
-        *self.tq[tu].get_mut() = Q_UNKNOWN;
-        for v in self.mesh.tris[tu] {
-            if v != NONE {
-                self.vmod[v as usize] = self.gen;
-            }
-        }
+        let tri = self.mesh.tris[t as usize];
+        self.edit(Sym2::IDENTITY).1.triangle_changed(t, tri);
+    }
+
+    /// The mesh, to call its edits, and the listener that keeps this workspace in step with
+    /// them; `m` is the metric of a vertex the edit adds or moves (its field values are taken
+    /// from `self.scratch_f`).
+    #[inline]
+    pub(crate) fn edit(&mut self, m: Sym2) -> (&mut Mesh2, Workspace<'_>) {
+        let Ctx {
+            mesh,
+            metric,
+            fields,
+            tstamp,
+            vstamp,
+            vmod,
+            log,
+            tseen,
+            tq,
+            gen,
+            logm,
+            fast_q,
+            scratch_f,
+            ..
+        } = self;
+        let ws = Workspace {
+            metric,
+            fields,
+            logm,
+            scratch_f,
+            fast_q: *fast_q,
+            gen: *gen,
+            m,
+            tstamp,
+            vstamp,
+            vmod,
+            log,
+            tseen,
+            tq,
+        };
+        (mesh, ws)
     }
 
     /// Drops deleted triangles and unused vertices and renumbers the rest along a space-filling
@@ -425,33 +435,6 @@ impl<'a> Ctx<'a> {
         out
     }
 
-    /// Appends a triangle (neighbours unset) and returns its index.
-    pub(crate) fn push_tri(&mut self, tri: [u32; 3], tref: i32) -> u32 {
-        let t = self.mesh.tris.len() as u32;
-        self.mesh.tris.push(tri);
-        self.mesh.neighbours.push([NONE; 3]);
-        self.mesh.edge_ref.push([0; 3]);
-        self.mesh.tri_ref.push(tref);
-        self.tstamp.push(self.gen);
-        self.tseen.push(0);
-        self.tq.push(AtomicU64::new(Q_UNKNOWN));
-        self.log.push(t);
-        for v in tri {
-            self.vmod[v as usize] = self.gen;
-        }
-        t
-    }
-
-    /// Makes `t` (local edge `i`) and `u` (local edge `j`) neighbours; `u == NONE` makes the edge
-    /// a boundary edge.
-    #[inline]
-    pub(crate) fn link(&mut self, t: u32, i: usize, u: u32, j: usize) {
-        self.mesh.neighbours[t as usize][i] = u;
-        if u != NONE {
-            self.mesh.neighbours[u as usize][j] = t;
-        }
-    }
-
     /// Metric and field values at `p` from the source, or interpolated with `weights` over
     /// `verts` (metric by `params.interpolation`, fields linear). Field values go to `self.scratch_f`.
     pub(crate) fn sample(&mut self, p: DVec2, verts: &[u32], weights: &[f64]) -> Sym2 {
@@ -502,6 +485,82 @@ impl<'a> Ctx<'a> {
     }
 }
 
+/// The per-vertex and per-triangle data of a [`Ctx`], borrowed while the mesh is edited: as an
+/// [`EditListener`] it grows with the mesh (a new vertex gets the metric `m` and the field
+/// values of `scratch_f`) and marks every changed triangle and its vertices as modified in the
+/// current pass (logged for the next split and flip passes, cached quality forgotten).
+pub(crate) struct Workspace<'c> {
+    metric: &'c mut Vec<Sym2>,
+    fields: &'c mut [Vec<f64>],
+    logm: &'c mut Vec<Sym2>,
+    scratch_f: &'c [f64],
+    fast_q: bool,
+    gen: u32,
+    m: Sym2,
+    tstamp: &'c mut Vec<u32>,
+    vstamp: &'c mut Vec<u32>,
+    vmod: &'c mut Vec<u32>,
+    log: &'c mut Vec<u32>,
+    tseen: &'c mut Vec<u32>,
+    tq: &'c mut Vec<AtomicU64>,
+}
+
+impl EditListener for Workspace<'_> {
+    fn vertex_added(&mut self, _v: u32) {
+        self.metric.push(self.m);
+        if !self.fast_q {
+            self.logm.push(self.m.log());
+        }
+        for (f, &x) in self.fields.iter_mut().zip(self.scratch_f) {
+            f.push(x);
+        }
+        self.vstamp.push(self.gen);
+        self.vmod.push(self.gen);
+    }
+
+    fn vertex_moved(&mut self, v: u32) {
+        let vu = v as usize;
+        self.metric[vu] = self.m;
+        if !self.fast_q {
+            self.logm[vu] = self.m.log();
+        }
+        for (f, &x) in self.fields.iter_mut().zip(self.scratch_f) {
+            f[vu] = x;
+        }
+    }
+
+    #[inline]
+    fn triangle_added(&mut self, t: u32, tri: [u32; 3]) {
+        self.tstamp.push(self.gen);
+        self.tseen.push(0);
+        self.tq.push(AtomicU64::new(Q_UNKNOWN));
+        self.log.push(t);
+        for v in tri {
+            self.vmod[v as usize] = self.gen;
+        }
+    }
+
+    #[inline]
+    fn triangle_changed(&mut self, t: u32, tri: [u32; 3]) {
+        let tu = t as usize;
+        if self.tstamp[tu] != self.gen {
+            self.log.push(t);
+        }
+        self.tstamp[tu] = self.gen;
+        *self.tq[tu].get_mut() = Q_UNKNOWN;
+        for v in tri {
+            if v != NONE {
+                self.vmod[v as usize] = self.gen;
+            }
+        }
+    }
+
+    #[inline]
+    fn triangle_removed(&mut self, t: u32) {
+        self.triangle_changed(t, [NONE; 3]);
+    }
+}
+
 /// `src` renumbered by `map` (old index -> new index, `NONE` for dropped entries) into a vector
 /// of length `n`; entries no old index maps to get `fill`.
 pub(crate) fn scatter<T: Copy>(src: &[T], map: &[u32], n: usize, fill: T) -> Vec<T> {
@@ -515,16 +574,7 @@ pub(crate) fn scatter<T: Copy>(src: &[T], map: &[u32], n: usize, fill: T) -> Vec
 }
 
 /// Local index of `v` in `tri` (the caller knows it is there).
-#[inline]
-pub(crate) fn local(tri: [u32; 3], v: u32) -> usize {
-    if tri[0] == v {
-        0
-    } else if tri[1] == v {
-        1
-    } else {
-        2
-    }
-}
+pub(crate) use crate::mesh::local_index_of as local;
 
 #[cfg(test)]
 mod tests {
