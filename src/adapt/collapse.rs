@@ -124,6 +124,7 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
 }
 
 /// Pure check of the collapse `a -> b` (loads the fans itself).
+#[cfg(test)]
 pub fn check(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     ctx.load_fan(a);
     check_loaded(ctx, a, b)

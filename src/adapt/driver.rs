@@ -5,7 +5,7 @@
 
 use super::sources::MetricSource;
 use super::topo::{scatter, Ctx, MetricInterpolation, OpParams};
-use super::{collapse, flip, smooth, split};
+use super::{collapse, flip, refine, smooth};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh2, NONE};
 use crate::metric::Sym2;
@@ -294,7 +294,7 @@ pub fn adapt(
         let mut run = |ctx: &mut Ctx, kind: PassKind, rep: &mut AdaptReport| -> Result<usize> {
             let t = Instant::now();
             let n = match kind {
-                PassKind::Split => split::pass(ctx, &mut cand),
+                PassKind::Split => refine::pass(ctx, &mut cand),
                 PassKind::Collapse => collapse::pass(ctx),
                 PassKind::Flip => flip::pass(ctx),
                 PassKind::Smooth => smooth::pass(ctx),

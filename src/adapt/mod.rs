@@ -31,11 +31,12 @@
 mod kernel;
 mod topo;
 
-pub mod collapse;
-pub mod flip;
-pub mod insert;
-pub mod smooth;
-pub mod split;
+mod collapse;
+mod flip;
+mod insert;
+mod refine;
+mod smooth;
+mod split;
 
 mod driver;
 pub mod features;
@@ -49,4 +50,7 @@ pub use driver::{
 pub use report::{mesh_report, MeshReport};
 pub use shape::{adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
-pub use topo::{Ctx, MetricInterpolation, OpParams, VClass};
+pub use topo::MetricInterpolation;
+
+#[cfg(test)]
+mod tests;

@@ -27,7 +27,7 @@ pub(crate) fn parallel_worth(n: usize) -> bool {
 
 /// Parameters the operators read (copied from [`super::AdaptOptions`]).
 #[derive(Debug, Clone, Copy)]
-pub struct OpParams {
+pub(crate) struct OpParams {
     /// Edges shorter than this (metric length) are collapsed.
     pub l_min: f64,
     /// Edges longer than this are split.
@@ -62,15 +62,15 @@ pub enum MetricInterpolation {
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
 /// and the two neighbours on the curve), or nowhere (`Fixed`: corner, required, junction).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum VClass {
+pub(crate) enum VClass {
     Free,
     Curve { label: i32, ends: [u32; 2] },
     Fixed,
 }
 
-/// Operator context over borrowed mesh data. Build one with [`Ctx::new`] to call the operators
-/// (`split::pass`, `collapse::pass`, ...) directly; [`super::adapt`] does this for you.
-pub struct Ctx<'a> {
+/// Operator context over borrowed mesh data: what the operators (`refine::pass`,
+/// `collapse::pass`, ...) read and change. [`super::adapt`] builds one per run.
+pub(crate) struct Ctx<'a> {
     pub mesh: &'a mut Mesh2,
     pub metric: &'a mut Vec<Sym2>,
     pub fields: &'a mut [Vec<f64>],
@@ -112,7 +112,7 @@ pub struct Ctx<'a> {
 impl<'a> Ctx<'a> {
     /// A context; the caller guarantees `metric.len() == mesh.n_points()` and the same for each
     /// field (the driver validates this).
-    pub fn new(
+    pub(crate) fn new(
         mesh: &'a mut Mesh2,
         metric: &'a mut Vec<Sym2>,
         fields: &'a mut [Vec<f64>],
@@ -151,7 +151,8 @@ impl<'a> Ctx<'a> {
 
     /// Makes the operators judge quality with the log-Euclidean element metric
     /// ([`crate::metric::element_metric`]) instead of the arithmetic mean (slower).
-    pub fn exact_quality(mut self) -> Self {
+    #[cfg(test)]
+    pub(crate) fn exact_quality(mut self) -> Self {
         use rayon::prelude::*;
         self.logm = self.metric.par_iter().map(|m| m.log()).collect();
         self.fast_q = false;
@@ -575,66 +576,3 @@ pub(crate) fn scatter<T: Copy>(src: &[T], map: &[u32], n: usize, fill: T) -> Vec
 
 /// Local index of `v` in `tri` (the caller knows it is there).
 pub(crate) use crate::mesh::local_index_of as local;
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::adapt::{collapse, flip, smooth, split};
-    use crate::mesh::GridPattern;
-
-    /// Every quality the operators cached (computed by a check and stored on apply, or carried
-    /// through a renumbering) is bit-equal to a fresh [`Ctx::q`], in both quality modes.
-    #[test]
-    fn cached_qualities_are_exact() {
-        for exact in [false, true] {
-            let mut mesh =
-                Mesh2::rectangle(DVec2::ZERO, DVec2::ONE, 9, 9, GridPattern::default()).unwrap();
-            let mut metric: Vec<Sym2> = mesh
-                .points
-                .iter()
-                .map(|p| {
-                    let d = (p.y - 0.4 - 0.3 * p.x * p.x).abs();
-                    Sym2::from_sizes([0.08, 0.004 + 0.5 * d], DVec2::new(1.0, 0.6 * p.x))
-                })
-                .collect();
-            let mut fields: Vec<Vec<f64>> = Vec::new();
-            let params = OpParams {
-                l_min: std::f64::consts::FRAC_1_SQRT_2,
-                l_max: std::f64::consts::SQRT_2,
-                q_max: 5.0,
-                curve_tol: 0.0,
-                insertion: true,
-                interpolation: MetricInterpolation::LinearSizes,
-            };
-            let mut ctx = Ctx::new(&mut mesh, &mut metric, &mut fields, None, params);
-            if exact {
-                ctx = ctx.exact_quality();
-            }
-            let (mut cand, mut ops) = (Vec::new(), 0);
-            for round in 0..12 {
-                ops += split::pass(&mut ctx, &mut cand) + flip::pass(&mut ctx);
-                if round % 3 == 2 {
-                    ops += collapse::pass(&mut ctx) + smooth::pass(&mut ctx);
-                    ctx.renumber_spatially();
-                }
-            }
-            assert!(ops > 500, "too little work to test: {ops} operations");
-            let mut known = 0;
-            for t in 0..ctx.mesh.n_tris() {
-                let q = f64::from_bits(ctx.tq[t].load(Relaxed));
-                if ctx.mesh.is_deleted(t) || q.is_nan() {
-                    continue;
-                }
-                known += 1;
-                let fresh = ctx.q(ctx.mesh.tris[t]);
-                assert_eq!(
-                    q.to_bits(),
-                    fresh.to_bits(),
-                    "exact {exact}, tri {t}: {q} vs {fresh}"
-                );
-            }
-            assert!(known > ctx.mesh.n_tris() / 2, "only {known} cached");
-            ctx.mesh.check().unwrap();
-        }
-    }
-}
