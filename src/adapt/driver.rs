@@ -4,7 +4,8 @@
 //! metric and the fields.
 
 use super::sources::MetricSource;
-use super::topo::{scatter, Ctx, MetricInterpolation, OpParams};
+use super::topo::{Ctx, MetricInterpolation, OpParams};
+use super::workspace::scatter;
 use super::{collapse, flip, refine, smooth};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh2, NONE};

@@ -30,6 +30,7 @@
 
 mod kernel;
 mod topo;
+mod workspace;
 
 mod collapse;
 mod flip;

@@ -34,14 +34,16 @@ mod grid;
 mod insert;
 mod locate;
 mod order;
+mod polygon;
 mod topology;
 
 pub use cavity::CavityEdge;
-pub use cdt::{circle_points, from_polygon, DomainLoop, LoopKind, PolygonDomain};
+pub use cdt::from_polygon;
 pub use edit::{EdgeSplit, EditListener};
 pub use grid::GridPattern;
 pub use insert::Insertion;
 pub use locate::Location;
+pub use polygon::{circle_points, DomainLoop, LoopKind, PolygonDomain};
 
 use crate::geom::DVec2;
 
