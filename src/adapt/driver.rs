@@ -170,17 +170,24 @@ impl AdaptOptions {
 /// The kind of a pass.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum PassKind {
+    /// Refinement: long edges split, or new vertices inserted by the Delaunay kernel.
     Split,
+    /// Short edges collapsed.
     Collapse,
+    /// Edges flipped toward better quality.
     Flip,
+    /// Vertices relocated toward better quality.
     Smooth,
 }
 
 /// One pass: what, how many operations, how long.
 #[derive(Debug, Clone, Serialize)]
 pub struct PassReport {
+    /// Which operator.
     pub kind: PassKind,
+    /// Operations applied (new vertices, collapses, flips or moves).
     pub count: usize,
+    /// Wall-clock seconds of the pass.
     pub seconds: f64,
 }
 
@@ -190,13 +197,21 @@ pub struct PassReport {
 /// out of range: the mesh is valid, only not fully adapted.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct AdaptReport {
+    /// Split/collapse cycles run.
     pub cycles: usize,
+    /// Every pass in order.
     pub passes: Vec<PassReport>,
+    /// New vertices (edge splits and Delaunay insertions).
     pub splits: usize,
+    /// Edge collapses.
     pub collapses: usize,
+    /// Edge flips.
     pub flips: usize,
+    /// Vertex moves.
     pub moves: usize,
+    /// Whether the stopping rule was met before the cycle cap (see above).
     pub converged: bool,
+    /// Total wall-clock seconds.
     pub seconds: f64,
     /// Time spent grading the metric ([`AdaptOptions::gradation`]).
     pub gradation_seconds: f64,

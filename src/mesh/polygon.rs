@@ -21,24 +21,30 @@ pub enum LoopKind {
     /// A hole: its inside is not meshed.
     Hole,
     /// An interface: its inside is meshed with sub-domain label `inside_ref`.
-    Interface { inside_ref: i32 },
+    Interface {
+        /// Sub-domain label of the triangles inside the loop.
+        inside_ref: i32,
+    },
 }
 
 /// A closed polygonal loop (the closing segment is implied; a repeated first point at the end is
 /// dropped).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DomainLoop {
+    /// The loop's vertices in order.
     pub points: Vec<DVec2>,
     /// Edge label of the loop's segments (also the vertex label of its vertices).
     pub label: i32,
     /// Target edge length along the loop: segments longer than `h` are subdivided.
     pub h: Option<f64>,
+    /// Outer boundary, hole or interface.
     pub kind: LoopKind,
 }
 
 /// A polygonal domain with holes and interfaces, and refinement parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PolygonDomain {
+    /// The loops; the first is the outer boundary.
     pub loops: Vec<DomainLoop>,
     /// Sub-domain label of triangles not inside any interface loop.
     pub domain_ref: i32,
