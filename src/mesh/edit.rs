@@ -76,7 +76,7 @@ impl<P> TriMesh<P> {
     }
 
     /// Appends a triangle with sub-domain label `tref` (neighbours unset, edges unlabelled).
-    pub(crate) fn push_tri(&mut self, tri: [u32; 3], tref: i32, l: &mut impl EditListener) -> u32 {
+    pub(super) fn push_tri(&mut self, tri: [u32; 3], tref: i32, l: &mut impl EditListener) -> u32 {
         let t = self.tris.len() as u32;
         self.tris.push(tri);
         self.neighbours.push([NONE; 3]);
@@ -89,7 +89,7 @@ impl<P> TriMesh<P> {
     /// Makes `t` (local edge `i`) and `u` (local edge `j`) neighbours; `u == NONE` makes the edge
     /// a boundary edge of `t`.
     #[inline]
-    pub(crate) fn link(&mut self, t: u32, i: usize, u: u32, j: usize) {
+    pub(super) fn link(&mut self, t: u32, i: usize, u: u32, j: usize) {
         self.neighbours[t as usize][i] = u;
         if u != NONE {
             self.neighbours[u as usize][j] = t;
