@@ -1,18 +1,18 @@
 //! Exact sharp features: `Shape::corners`, the point insertion behind them
-//! (`adapt::features::insert_point`) and the corner vertices of `adapt_to_shape`
+//! (`Mesh2::insert_point`) and the corner vertices of `adapt_to_shape`
 //! (`ShapeAdaptOptions::features`, `kink_edge`). On the default Zalesak run (004 eq. (6),
 //! eps 1e-4, hmin 1e-3, hmax 0.2) the corner vertices and kink edges took the Hausdorff distance
 //! from 4.9e-4 to 2.0e-5 and the perimeter error from 4.3e-4 to 5.8e-6; at eps and hmin ±10%
 //! from 3.7e-4..7.9e-4 to 1.9e-5..2.2e-5 (corner vertices alone: 2.2e-5..2.0e-4, the rest
 //! still cut where the corner's fan straddles the kink of the distance).
 
-use anisomesh::adapt::features::{insert_point, kink_point, Insertion, KINK_LABEL};
+use anisomesh::adapt::features::{kink_point, KINK_LABEL};
 use anisomesh::adapt::{
     adapt_to_shape, mesh_report, AnalyticLevelSetSource, MeshReport, ShapeAdaptOptions,
 };
 use anisomesh::error::Error;
 use anisomesh::levelset::{Circle, Difference, Rotated, Shape, Zalesak};
-use anisomesh::mesh::{GridPattern, Mesh2};
+use anisomesh::mesh::{GridPattern, Insertion, Mesh2};
 use anisomesh::DVec2;
 
 fn unit_square(n: usize) -> Mesh2 {
@@ -22,7 +22,7 @@ fn unit_square(n: usize) -> Mesh2 {
 /// Inserts `p`, checks the mesh, the area and that a vertex sits exactly at `p`.
 fn insert_checked(m: &mut Mesh2, p: DVec2) -> Insertion {
     let (area, nt) = (m.area(), m.n_live_tris());
-    let r = insert_point(m, p).unwrap();
+    let r = m.insert_point(p).unwrap();
     m.check().unwrap();
     assert_eq!(m.points[r.vertex() as usize], p);
     assert!(
@@ -72,7 +72,7 @@ fn insert_point_inside_on_edges_and_at_vertices() {
     // An existing vertex: nothing changes.
     let before = m.clone();
     assert_eq!(
-        insert_point(&mut m, DVec2::new(0.5, 0.5)).unwrap(),
+        m.insert_point(DVec2::new(0.5, 0.5)).unwrap(),
         Insertion::Existing(4)
     );
     assert_eq!(m, before);
@@ -87,7 +87,7 @@ fn insert_point_outside_or_not_finite_is_a_typed_error() {
         DVec2::new(-1e-12, 0.5),
         DVec2::new(f64::NAN, 0.5),
     ] {
-        match insert_point(&mut m, p) {
+        match m.insert_point(p) {
             Err(Error::InvalidInput(msg)) => assert!(msg.contains("insert_point"), "{msg}"),
             other => panic!("{p}: expected InvalidInput, got {other:?}"),
         }

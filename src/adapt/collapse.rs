@@ -10,6 +10,7 @@
 
 use super::topo::{local, parallel_worth, Ctx, VClass};
 use crate::mesh::{next, prev, NONE};
+use crate::metric::Sym2;
 use rayon::prelude::*;
 
 /// A planned collapse of vertex `a` onto its neighbour `b`.
@@ -123,88 +124,18 @@ pub fn check_loaded(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
 }
 
 /// Pure check of the collapse `a -> b` (loads the fans itself).
+#[cfg(test)]
 pub fn check(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     ctx.load_fan(a);
     check_loaded(ctx, a, b)
 }
 
-/// Applies a collapse planned by [`check`] (the fan of `a` must still be in `ctx.fan`).
+/// Applies a collapse planned by [`check`] ([`crate::mesh::TriMesh::collapse_edge`]; the fan of
+/// `a` must still be in `ctx.fan`).
 pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
-    let (a, b) = (plan.a, plan.b);
     let fan = std::mem::take(&mut ctx.fan);
-    let mut survivor = NONE;
-    let mut fixups: [(u32, u32); 2] = [(NONE, NONE); 2];
-    let mut nfix = 0;
-    for &t in &fan {
-        let tu = t as usize;
-        let tri = ctx.mesh.tris[tu];
-        if !tri.contains(&b) {
-            continue;
-        }
-        let ia = local(tri, a);
-        let ib = local(tri, b);
-        let ic = 3 - ia - ib;
-        let c = tri[ic];
-        let (n_ac, r_ac) = (ctx.mesh.neighbours[tu][ib], ctx.mesh.edge_ref[tu][ib]);
-        let (n_bc, r_bc) = (ctx.mesh.neighbours[tu][ia], ctx.mesh.edge_ref[tu][ia]);
-        let r = if n_ac == NONE {
-            r_ac
-        } else if n_bc == NONE {
-            r_bc
-        } else if r_ac != 0 {
-            r_ac
-        } else {
-            r_bc
-        };
-        let j_ac = if n_ac != NONE {
-            ctx.mesh.mirror_edge(tu, n_ac as usize)
-        } else {
-            None
-        };
-        let j_bc = if n_bc != NONE {
-            ctx.mesh.mirror_edge(tu, n_bc as usize)
-        } else {
-            None
-        };
-        if let Some(j) = j_ac {
-            ctx.mesh.neighbours[n_ac as usize][j] = n_bc;
-            ctx.mesh.edge_ref[n_ac as usize][j] = r;
-            ctx.touch(n_ac);
-        }
-        if let Some(j) = j_bc {
-            ctx.mesh.neighbours[n_bc as usize][j] = n_ac;
-            ctx.mesh.edge_ref[n_bc as usize][j] = r;
-            ctx.touch(n_bc);
-        }
-        // Seeds for c and b: a surviving neighbour that holds them.
-        let keep = if n_bc != NONE { n_bc } else { n_ac };
-        fixups[nfix] = (c, keep);
-        nfix += 1;
-        if n_bc != NONE {
-            survivor = n_bc;
-        }
-        ctx.mesh.tris[tu] = [NONE; 3];
-        ctx.mesh.neighbours[tu] = [NONE; 3];
-        ctx.touch(t);
-    }
-    for &t in &fan {
-        let tu = t as usize;
-        if ctx.mesh.tris[tu][0] == NONE {
-            continue;
-        }
-        let ia = local(ctx.mesh.tris[tu], a);
-        ctx.mesh.tris[tu][ia] = b;
-        ctx.touch(t);
-        survivor = t;
-    }
-    ctx.mesh.vert_tri[a as usize] = NONE;
-    ctx.mesh.vert_tri[b as usize] = survivor;
-    for &(c, keep) in &fixups[..nfix] {
-        let s = ctx.mesh.vert_tri[c as usize];
-        if s == NONE || ctx.mesh.tris[s as usize][0] == NONE {
-            ctx.mesh.vert_tri[c as usize] = keep;
-        }
-    }
+    let (mesh, mut ws) = ctx.edit(Sym2::IDENTITY);
+    mesh.collapse_edge(plan.a, plan.b, &fan, &mut ws);
     ctx.fan = fan;
 }
 

@@ -4,8 +4,9 @@
 //! metric and the fields.
 
 use super::sources::MetricSource;
-use super::topo::{scatter, Ctx, MetricInterpolation, OpParams};
-use super::{collapse, flip, smooth, split};
+use super::topo::{Ctx, MetricInterpolation, OpParams};
+use super::workspace::scatter;
+use super::{collapse, flip, refine, smooth};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh2, NONE};
 use crate::metric::Sym2;
@@ -169,17 +170,24 @@ impl AdaptOptions {
 /// The kind of a pass.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum PassKind {
+    /// Refinement: long edges split, or new vertices inserted by the Delaunay kernel.
     Split,
+    /// Short edges collapsed.
     Collapse,
+    /// Edges flipped toward better quality.
     Flip,
+    /// Vertices relocated toward better quality.
     Smooth,
 }
 
 /// One pass: what, how many operations, how long.
 #[derive(Debug, Clone, Serialize)]
 pub struct PassReport {
+    /// Which operator.
     pub kind: PassKind,
+    /// Operations applied (new vertices, collapses, flips or moves).
     pub count: usize,
+    /// Wall-clock seconds of the pass.
     pub seconds: f64,
 }
 
@@ -189,13 +197,21 @@ pub struct PassReport {
 /// out of range: the mesh is valid, only not fully adapted.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct AdaptReport {
+    /// Split/collapse cycles run.
     pub cycles: usize,
+    /// Every pass in order.
     pub passes: Vec<PassReport>,
+    /// New vertices (edge splits and Delaunay insertions).
     pub splits: usize,
+    /// Edge collapses.
     pub collapses: usize,
+    /// Edge flips.
     pub flips: usize,
+    /// Vertex moves.
     pub moves: usize,
+    /// Whether the stopping rule was met before the cycle cap (see above).
     pub converged: bool,
+    /// Total wall-clock seconds.
     pub seconds: f64,
     /// Time spent grading the metric ([`AdaptOptions::gradation`]).
     pub gradation_seconds: f64,
@@ -294,7 +310,7 @@ pub fn adapt(
         let mut run = |ctx: &mut Ctx, kind: PassKind, rep: &mut AdaptReport| -> Result<usize> {
             let t = Instant::now();
             let n = match kind {
-                PassKind::Split => split::pass(ctx, &mut cand),
+                PassKind::Split => refine::pass(ctx, &mut cand),
                 PassKind::Collapse => collapse::pass(ctx),
                 PassKind::Flip => flip::pass(ctx),
                 PassKind::Smooth => smooth::pass(ctx),

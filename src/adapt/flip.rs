@@ -6,6 +6,7 @@
 use super::topo::{parallel_worth, Ctx};
 use crate::geom::orient2d;
 use crate::mesh::{next, prev, NONE};
+use crate::metric::Sym2;
 use rayon::prelude::*;
 
 /// Relative improvement of the worse quality a flip must bring (avoids cycling).
@@ -61,46 +62,12 @@ pub fn check(ctx: &Ctx, t: u32, i: usize) -> Option<FlipPlan> {
     })
 }
 
-/// Applies a flip: `(c, a, b) + (d, b, a)` becomes `(c, a, d) + (d, b, c)`.
+/// Applies a flip ([`crate::mesh::TriMesh::flip_edge`]): `(c, a, b) + (d, b, a)` becomes
+/// `(c, a, d) + (d, b, c)`.
 pub fn apply(ctx: &mut Ctx, plan: &FlipPlan) {
-    let (t, i) = (plan.t, plan.i as usize);
-    let tu = t as usize;
-    let t2 = ctx.mesh.neighbours[tu][i];
-    let t2u = t2 as usize;
-    let tri = ctx.mesh.tris[tu];
-    let (c, a, b) = (tri[i], tri[next(i)], tri[prev(i)]);
-    let j = ctx.mesh.mirror_edge(tu, t2u).unwrap_or(0);
-    let d = ctx.mesh.tris[t2u][j];
-    let (nb1, rf1) = (ctx.mesh.neighbours[tu], ctx.mesh.edge_ref[tu]);
-    let (nb2, rf2) = (ctx.mesh.neighbours[t2u], ctx.mesh.edge_ref[t2u]);
-    let (n_bc, r_bc, n_ca, r_ca) = (nb1[next(i)], rf1[next(i)], nb1[prev(i)], rf1[prev(i)]);
-    let (n_ad, r_ad, n_db, r_db) = (nb2[next(j)], rf2[next(j)], nb2[prev(j)], rf2[prev(j)]);
-    let j_ad = if n_ad != NONE {
-        ctx.mesh.mirror_edge(t2u, n_ad as usize).unwrap_or(0)
-    } else {
-        0
-    };
-    let j_bc = if n_bc != NONE {
-        ctx.mesh.mirror_edge(tu, n_bc as usize).unwrap_or(0)
-    } else {
-        0
-    };
-    ctx.mesh.tris[tu] = [c, a, d];
-    ctx.mesh.tris[t2u] = [d, b, c];
-    ctx.mesh.edge_ref[tu] = [r_ad, 0, r_ca];
-    ctx.mesh.edge_ref[t2u] = [r_bc, 0, r_db];
-    ctx.mesh.neighbours[tu] = [NONE, t2, n_ca];
-    ctx.mesh.neighbours[t2u] = [NONE, t, n_db];
-    ctx.link(t, 0, n_ad, j_ad);
-    ctx.link(t2, 0, n_bc, j_bc);
-    if ctx.mesh.vert_tri[a as usize] == t2 {
-        ctx.mesh.vert_tri[a as usize] = t;
-    }
-    if ctx.mesh.vert_tri[b as usize] == t {
-        ctx.mesh.vert_tri[b as usize] = t2;
-    }
-    ctx.touch(t);
-    ctx.touch(t2);
+    let t = plan.t;
+    let (mesh, mut ws) = ctx.edit(Sym2::IDENTITY);
+    let t2 = mesh.flip_edge(t, plan.i as usize, &mut ws);
     if let Some([q1, q2]) = plan.q {
         // `check` evaluated exactly these triangles, `(c, a, d)` and `(d, b, c)`, with `Ctx::q`.
         ctx.set_q(t, q1);

@@ -13,15 +13,14 @@
 use super::split::SplitPlan;
 use super::topo::Ctx;
 use crate::geom::{incircle, orient2d, DVec2};
-use crate::mesh::{next, prev, NONE};
+use crate::mesh::{next, prev, CavityEdge, NONE};
 use crate::metric::Sym2;
 
 /// Maximal cavity size (triangles).
 const MAX_CAVITY: usize = 32;
 
-/// A planned insertion: the point, its metric, the cavity triangles and its boundary edges
-/// `(u, w, outside triangle, outside local edge, label)` in counter-clockwise order of the
-/// triangles that held them.
+/// A planned insertion: the point, its metric, the cavity triangles and its boundary edges in
+/// the order of the cavity's triangles.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InsertPlan {
     pub p: DVec2,
@@ -29,7 +28,7 @@ pub struct InsertPlan {
     pub s: f64,
     pub ends: [u32; 2],
     pub cavity: Vec<u32>,
-    pub boundary: Vec<(u32, u32, u32, u8, i32)>,
+    pub boundary: Vec<CavityEdge>,
     /// `Q_ani` of the star triangle on each boundary edge in the arithmetic-mean element metric
     /// (the operators' default quality, so `apply` caches it; set only by `check`).
     pub(crate) q_star: Vec<f64>,
@@ -123,24 +122,10 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
         }
     }
     // Boundary edges; seeds' edges must also see p on their left.
-    let mut boundary = Vec::with_capacity(cavity.len() + 2);
-    for &c in &cavity {
-        let c = c as usize;
-        for e in 0..3 {
-            let nb = mesh.neighbours[c][e];
-            if nb != NONE && cavity.contains(&nb) {
-                continue;
-            }
-            let [u, w] = mesh.edge_vertices(c, e);
-            if orient2d(mesh.points[u as usize], mesh.points[w as usize], p) <= 0.0 {
-                return None;
-            }
-            let j = if nb != NONE {
-                mesh.mirror_edge(c, nb as usize)? as u8
-            } else {
-                0
-            };
-            boundary.push((u, w, nb, j, mesh.edge_ref[c][e]));
+    let boundary = mesh.cavity_boundary(&cavity)?;
+    for e in &boundary {
+        if orient2d(mesh.points[e.u as usize], mesh.points[e.w as usize], p) <= 0.0 {
+            return None;
         }
     }
     // A disc without interior vertices: k triangles, k + 2 boundary edges, distinct starts.
@@ -149,7 +134,7 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
     }
     for x in 0..boundary.len() {
         for y in x + 1..boundary.len() {
-            if boundary[x].0 == boundary[y].0 {
+            if boundary[x].u == boundary[y].u {
                 return None;
             }
         }
@@ -158,7 +143,7 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
     let q_old = cavity.iter().map(|&c| ctx.q_tri(c)).fold(1.0, f64::max);
     let q_star: Vec<f64> = boundary
         .iter()
-        .map(|&(u, w, ..)| {
+        .map(|&CavityEdge { u, w, .. }| {
             let pts = [p, mesh.points[u as usize], mesh.points[w as usize]];
             super::kernel::q_ani_mean(pts, [&m, ctx.m(u), ctx.m(w)])
         })
@@ -178,8 +163,8 @@ pub fn check(ctx: &mut Ctx, split: &SplitPlan) -> Option<InsertPlan> {
     })
 }
 
-/// Applies an insertion: the cavity slots are reused for the star and two triangles appended.
-/// Returns the new vertex.
+/// Applies an insertion ([`crate::mesh::TriMesh::fill_cavity`]): the cavity slots are reused
+/// for the star and two triangles appended. Returns the new vertex.
 pub fn apply(ctx: &mut Ctx, plan: &InsertPlan) -> u32 {
     let [a, b] = plan.ends;
     // Fields at the new vertex: from the source, else interpolated along the edge.
@@ -191,33 +176,11 @@ pub fn apply(ctx: &mut Ctx, plan: &InsertPlan) -> u32 {
             ctx.scratch_f[k] = (1.0 - plan.s) * f[a as usize] + plan.s * f[b as usize];
         }
     }
-    let v = ctx.push_vertex(plan.p, plan.m, 0);
-    let tref = ctx.mesh.tri_ref[plan.cavity[0] as usize];
-    let mut slots: Vec<u32> = plan.cavity.clone();
-    while slots.len() < plan.boundary.len() {
-        let t = ctx.push_tri([v, v, v], tref);
-        slots.push(t);
+    let (mesh, mut ws) = ctx.edit(plan.m);
+    let v = mesh.add_vertex(plan.p, 0, &mut ws);
+    let star = mesh.fill_cavity(v, &plan.cavity, &plan.boundary, &mut ws);
+    for (&t, &q) in star.iter().zip(&plan.q_star) {
+        ctx.set_fast_q(t, q);
     }
-    for (k, &(u, w, nb, j, r)) in plan.boundary.iter().enumerate() {
-        let t = slots[k];
-        let tu = t as usize;
-        ctx.mesh.tris[tu] = [v, u, w];
-        ctx.mesh.tri_ref[tu] = tref;
-        ctx.mesh.edge_ref[tu] = [r, 0, 0];
-        ctx.mesh.neighbours[tu] = [NONE; 3];
-        ctx.touch(t);
-        ctx.set_fast_q(t, plan.q_star[k]);
-        ctx.link(t, 0, nb, j as usize);
-        ctx.mesh.vert_tri[u as usize] = t;
-    }
-    // Star adjacency: (v, u, w) meets the triangle starting at w across edge (w, v), local 1,
-    // whose local 2 is edge (v, w).
-    for k in 0..plan.boundary.len() {
-        let w = plan.boundary[k].1;
-        if let Some(k2) = plan.boundary.iter().position(|e| e.0 == w) {
-            ctx.link(slots[k], 1, slots[k2], 2);
-        }
-    }
-    ctx.mesh.vert_tri[v as usize] = slots[0];
     v
 }

@@ -3,11 +3,18 @@
 //! sources (004 eq. (6), multiscale Lp) and the shape-capturing loop.
 //!
 //! Layout (one concept per file, MMG/Omega_h style):
-//! - `topo.rs`: fans, vertex classes (free / on a labelled curve / fixed), the per-pass workspace.
+//! - `topo.rs`: the operator context (mesh, metric, fields, source, parameters), its metric and
+//!   quality queries and the vertex classes (free / on a labelled curve / fixed);
+//!   `workspace.rs`: the per-pass workspace, which hears the mesh edits through
+//!   [`crate::mesh::EditListener`].
 //! - `kernel.rs`: the metric quantities the operators evaluate (edge length, `Q_ani`), thin
 //!   wrappers over [`crate::metric`].
-//! - `split.rs`, `collapse.rs`, `flip.rs`, `smooth.rs`, `insert.rs`: one operator each, with a
-//!   pure `check` that returns the planned change, an `apply`, and a `pass` returning a count.
+//! - `split.rs`, `insert.rs`, `collapse.rs`, `flip.rs`, `smooth.rs`: one operator each, with a
+//!   pure `check` that returns the planned change from metric and quality, and an `apply` that
+//!   calls the topology edits of [`crate::mesh`] (split edge, fill cavity, collapse edge, flip
+//!   edge, move vertex). `refine.rs` is the pass that picks long edges and chooses between a
+//!   split and an insertion; collapse, flip and smooth have their own `pass`. Each pass returns
+//!   a count.
 //! - `driver.rs`: [`adapt`], [`AdaptOptions`], [`AdaptReport`].
 //! - `sources.rs`: [`MetricSource`] implementations and metric fields from level sets/Hessians.
 //! - `shape.rs`: [`adapt_to_shape`]; `report.rs`: [`MeshReport`].
@@ -25,17 +32,19 @@
 //!
 //! Invariants kept by every operator: counter-clockwise triangles (exact `orient2d`), symmetric
 //! `neighbours`, `edge_ref`, `vert_tri`, `corner`, `required`, `vert_ref`, `tri_ref`. Deleted
-//! triangles are tombstones until [`crate::mesh::Mesh2::compact`] (the driver compacts at the
+//! triangles are tombstones until [`crate::mesh::TriMesh::compact`] (the driver compacts at the
 //! end, remapping the metric and the fields).
 
 mod kernel;
 mod topo;
+mod workspace;
 
-pub mod collapse;
-pub mod flip;
-pub mod insert;
-pub mod smooth;
-pub mod split;
+mod collapse;
+mod flip;
+mod insert;
+mod refine;
+mod smooth;
+mod split;
 
 mod driver;
 pub mod estimate;
@@ -54,4 +63,7 @@ pub use run::{
 };
 pub use shape::{adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
-pub use topo::{Ctx, MetricInterpolation, OpParams, VClass};
+pub use topo::MetricInterpolation;
+
+#[cfg(test)]
+mod tests;

@@ -14,11 +14,15 @@ use serde::Serialize;
 /// Measures of an adapted mesh and its level set.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct MeshReport {
+    /// Number of vertices.
     pub vertices: usize,
+    /// Number of triangles.
     pub triangles: usize,
     /// Share of edges with metric length in `[1/sqrt 2, sqrt 2]`.
     pub edge_length_in_range: f64,
+    /// Mean `Q_ani` of the triangles (004 §3.4; 1 is ideal).
     pub q_ani_mean: f64,
+    /// Worst `Q_ani` of the triangles.
     pub q_ani_max: f64,
     /// Area enclosed by the zero level of the P1 level set (`u < 0`).
     pub area: f64,
@@ -26,6 +30,7 @@ pub struct MeshReport {
     pub perimeter: f64,
     /// Exact area and perimeter of the shape, when there is one and they are known.
     pub exact_area: Option<f64>,
+    /// Exact perimeter of the shape, when known.
     pub exact_perimeter: Option<f64>,
     /// `|area - exact| / exact`.
     pub area_rel_error: Option<f64>,
@@ -33,6 +38,7 @@ pub struct MeshReport {
     pub hausdorff: Option<f64>,
     /// Total seconds, and seconds per phase (`(name, seconds)`).
     pub seconds: f64,
+    /// Seconds per phase, `(name, seconds)`.
     pub phases: Vec<(String, f64)>,
 }
 

@@ -21,6 +21,7 @@ pub struct ShapeAdaptOptions {
     /// The metric (eq. (6) parameters, band, bounds; `analytic` chooses exact derivatives and
     /// re-evaluation at new vertices versus recovery from the P1 field and interpolation).
     pub metric: LevelSetMetric,
+    /// Options of each adaptation round.
     pub adapt: AdaptOptions,
     /// Cells per side of the initial structured grid.
     pub coarse_cells: usize,

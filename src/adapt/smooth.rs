@@ -94,8 +94,9 @@ pub fn check_fan(ctx: &Ctx, v: u32, fan: &[u32]) -> Option<MovePlan> {
     None
 }
 
-/// Applies a move: the metric and fields at the new position come from the source, else from
-/// interpolation in the old fan triangle containing the new position.
+/// Applies a move ([`crate::mesh::TriMesh::move_vertex`]): the metric and fields at the new
+/// position come from the source, else from interpolation in the old fan triangle containing
+/// the new position.
 pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     let v = plan.v;
     let mut verts = [v; 3];
@@ -111,18 +112,10 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
         }
     }
     let m = ctx.sample(plan.p, &verts, &w);
-    let vu = v as usize;
-    ctx.mesh.points[vu] = plan.p;
-    ctx.metric[vu] = m;
-    if !ctx.fast_q {
-        ctx.logm[vu] = m.log();
-    }
-    for k in 0..ctx.fan.len() {
-        ctx.touch(ctx.fan[k]);
-    }
-    for (f, &x) in ctx.fields.iter_mut().zip(&ctx.scratch_f) {
-        f[vu] = x;
-    }
+    let fan = std::mem::take(&mut ctx.fan);
+    let (mesh, mut ws) = ctx.edit(m);
+    mesh.move_vertex(v, plan.p, &fan, &mut ws);
+    ctx.fan = fan;
 }
 
 /// One smoothing sweep, in vertex order, over the free vertices whose ball changed since the

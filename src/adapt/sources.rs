@@ -46,8 +46,11 @@ impl MetricSource for NoSource {
 pub struct LevelSetMetric {
     /// Interface error bound ε of eq. (6).
     pub eps: f64,
+    /// Smallest edge size allowed (`h_min` of eq. (6)).
     pub hmin: f64,
+    /// Largest edge size allowed.
     pub hmax: f64,
+    /// Largest ratio of the two sizes of one metric.
     pub max_aniso: f64,
     /// Half-width of the band around the zero level where eq. (6) applies.
     pub band: f64,
@@ -127,7 +130,9 @@ impl LevelSetMetric {
 /// turned into the metric by a [`LevelSetMetric`]. It re-evaluates the metric at every new or
 /// moved vertex and, as field 0, the level set itself (further fields are interpolated).
 pub struct AnalyticLevelSetSource<F> {
+    /// The level set and its derivatives at a point: `(u, ∇u, D²u)`.
     pub f: F,
+    /// How the derivatives become a metric.
     pub metric: LevelSetMetric,
 }
 
@@ -189,10 +194,15 @@ impl LevelSetMetric {
 pub struct HessianMetric {
     /// The `L^p` norm exponent (`f64::INFINITY` allowed).
     pub p: f64,
+    /// The vertex count the metric's complexity is scaled to.
     pub target_vertices: usize,
+    /// Smallest edge size allowed.
     pub hmin: f64,
+    /// Largest edge size allowed.
     pub hmax: f64,
+    /// Largest ratio of the two sizes of one metric.
     pub max_aniso: f64,
+    /// Use the isotropic variant (the smaller size in every direction).
     pub isotropic: bool,
 }
 

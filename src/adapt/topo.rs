@@ -1,21 +1,16 @@
 //! The operator context: the mesh, its metric and P1 fields, an optional metric source, the
-//! operator parameters and a per-pass workspace (scratch kept apart from the mesh data).
-//! Also the small topological helpers the operators share (vertex class, linking triangles).
+//! operator parameters and a per-pass workspace (scratch kept apart from the mesh data;
+//! `workspace.rs`). Here: the metric and quality queries the operators' checks make, and the
+//! vertex class (free, on a labelled curve, fixed).
 
 use super::kernel;
 use super::sources::MetricSource;
+use super::workspace::unknown_qualities;
 use crate::geom::DVec2;
 use crate::mesh::{next, prev, Mesh2, NONE};
 use crate::metric::length::geometric_mean_length;
 use crate::metric::Sym2;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
-
-/// `tq` entry of a triangle whose quality is not known.
-const Q_UNKNOWN: u64 = 0x7ff8_0000_0000_0000; // f64::NAN
-
-fn unknown_qualities(n: usize) -> Vec<AtomicU64> {
-    (0..n).map(|_| AtomicU64::new(Q_UNKNOWN)).collect()
-}
 
 /// Whether a pass over `n` candidates should evaluate its checks in parallel first: with more
 /// than one rayon thread and enough work. The passes use the parallel results only where the
@@ -27,7 +22,7 @@ pub(crate) fn parallel_worth(n: usize) -> bool {
 
 /// Parameters the operators read (copied from [`super::AdaptOptions`]).
 #[derive(Debug, Clone, Copy)]
-pub struct OpParams {
+pub(crate) struct OpParams {
     /// Edges shorter than this (metric length) are collapsed.
     pub l_min: f64,
     /// Edges longer than this are split.
@@ -62,15 +57,15 @@ pub enum MetricInterpolation {
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
 /// and the two neighbours on the curve), or nowhere (`Fixed`: corner, required, junction).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum VClass {
+pub(crate) enum VClass {
     Free,
     Curve { label: i32, ends: [u32; 2] },
     Fixed,
 }
 
-/// Operator context over borrowed mesh data. Build one with [`Ctx::new`] to call the operators
-/// (`split::pass`, `collapse::pass`, ...) directly; [`super::adapt`] does this for you.
-pub struct Ctx<'a> {
+/// Operator context over borrowed mesh data: what the operators (`refine::pass`,
+/// `collapse::pass`, ...) read and change. [`super::adapt`] builds one per run.
+pub(crate) struct Ctx<'a> {
     pub mesh: &'a mut Mesh2,
     pub metric: &'a mut Vec<Sym2>,
     pub fields: &'a mut [Vec<f64>],
@@ -112,7 +107,7 @@ pub struct Ctx<'a> {
 impl<'a> Ctx<'a> {
     /// A context; the caller guarantees `metric.len() == mesh.n_points()` and the same for each
     /// field (the driver validates this).
-    pub fn new(
+    pub(crate) fn new(
         mesh: &'a mut Mesh2,
         metric: &'a mut Vec<Sym2>,
         fields: &'a mut [Vec<f64>],
@@ -151,24 +146,12 @@ impl<'a> Ctx<'a> {
 
     /// Makes the operators judge quality with the log-Euclidean element metric
     /// ([`crate::metric::element_metric`]) instead of the arithmetic mean (slower).
-    pub fn exact_quality(mut self) -> Self {
+    #[cfg(test)]
+    pub(crate) fn exact_quality(mut self) -> Self {
         use rayon::prelude::*;
         self.logm = self.metric.par_iter().map(|m| m.log()).collect();
         self.fast_q = false;
         self
-    }
-
-    /// Starts a new pass: every stamp becomes stale.
-    pub(crate) fn new_pass(&mut self) {
-        // 2^32 passes never happen in practice; saturate rather than wrap.
-        self.gen = self.gen.saturating_add(1);
-    }
-
-    /// Makes the next smoothing pass examine only the vertices whose ball changes after this
-    /// call (by default a pass also re-examines the neighbours of the previous pass's moves).
-    pub(crate) fn smoothing_settled(&mut self) {
-        self.new_pass();
-        self.last_smooth = self.gen;
     }
 
     #[inline]
@@ -317,141 +300,6 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// Appends a vertex at `p` with metric `m` and field values from `self.scratch_f`.
-    pub(crate) fn push_vertex(&mut self, p: DVec2, m: Sym2, vref: i32) -> u32 {
-        let v = self.mesh.points.len() as u32;
-        self.mesh.points.push(p);
-        self.mesh.vert_ref.push(vref);
-        self.mesh.corner.push(false);
-        self.mesh.required.push(false);
-        self.mesh.vert_tri.push(NONE);
-        self.metric.push(m);
-        if !self.fast_q {
-            self.logm.push(m.log());
-        }
-        for (f, &x) in self.fields.iter_mut().zip(&self.scratch_f) {
-            f.push(x);
-        }
-        self.vstamp.push(self.gen);
-        self.vmod.push(self.gen);
-        v
-    }
-
-    /// Marks triangle `t` (with its current vertices) as modified in this pass.
-    #[inline]
-    pub(crate) fn touch(&mut self, t: u32) {
-        let tu = t as usize;
-        if self.tstamp[tu] != self.gen {
-            self.log.push(t);
-        }
-        self.tstamp[tu] = self.gen;
-        *self.tq[tu].get_mut() = Q_UNKNOWN;
-        for v in self.mesh.tris[tu] {
-            if v != NONE {
-                self.vmod[v as usize] = self.gen;
-            }
-        }
-    }
-
-    /// Drops deleted triangles and unused vertices and renumbers the rest along a space-filling
-    /// curve ([`Mesh2::compact_spatial`]), carrying the metric, fields, stamps and cached
-    /// qualities along: the operators' fan walks then touch memory that is close together.
-    pub(crate) fn renumber_spatially(&mut self) {
-        let (vmap, tmap) = self.mesh.compact_spatial();
-        let nv = self.mesh.n_points();
-        let nt = self.mesh.n_tris();
-        *self.metric = scatter(self.metric, &vmap, nv, Sym2::IDENTITY);
-        for f in self.fields.iter_mut() {
-            *f = scatter(f, &vmap, nv, 0.0);
-        }
-        if !self.fast_q {
-            self.logm = scatter(&self.logm, &vmap, nv, Sym2::IDENTITY);
-        }
-        self.vstamp = scatter(&self.vstamp, &vmap, nv, 0);
-        self.vmod = scatter(&self.vmod, &vmap, nv, 0);
-        self.tstamp = scatter(&self.tstamp, &tmap, nt, 0);
-        self.tseen = vec![0; nt];
-        // Known qualities stay known: the triangles are the same, only their indices change.
-        let mut tq = unknown_qualities(nt);
-        for (old, &new) in tmap.iter().enumerate() {
-            if new != NONE {
-                *tq[new as usize].get_mut() = *self.tq[old].get_mut();
-            }
-        }
-        self.tq = tq;
-        // Keep the log entries some pass has not consumed yet, renumbered.
-        let lo = self.split_pos.min(self.flip_pos);
-        let mut kept = Vec::with_capacity(self.log.len() - lo);
-        let (mut sp, mut fp) = (0, 0);
-        for k in lo..=self.log.len() {
-            if k == self.split_pos {
-                sp = kept.len();
-            }
-            if k == self.flip_pos {
-                fp = kept.len();
-            }
-            if let Some(&t) = self.log.get(k) {
-                let new = tmap[t as usize];
-                if new != NONE {
-                    kept.push(new);
-                }
-            }
-        }
-        self.log = kept;
-        self.split_pos = sp;
-        self.flip_pos = fp;
-    }
-
-    /// The live triangles logged since position `from`, each once, in index order (which the
-    /// spatial renumbering makes a memory-friendly order).
-    pub(crate) fn logged_since(&mut self, from: usize) -> Vec<u32> {
-        let mut out = Vec::with_capacity(self.log.len().saturating_sub(from));
-        for k in from..self.log.len() {
-            let t = self.log[k];
-            let tu = t as usize;
-            if self.tseen[tu] != self.gen && !self.mesh.is_deleted(tu) {
-                self.tseen[tu] = self.gen;
-                out.push(t);
-            }
-        }
-        if out.len() > self.tseen.len() / 16 {
-            // Many: one sequential sweep of the marks is cheaper than sorting.
-            out.clear();
-            let gen = self.gen;
-            out.extend((0..self.tseen.len() as u32).filter(|&t| self.tseen[t as usize] == gen));
-        } else {
-            out.sort_unstable();
-        }
-        out
-    }
-
-    /// Appends a triangle (neighbours unset) and returns its index.
-    pub(crate) fn push_tri(&mut self, tri: [u32; 3], tref: i32) -> u32 {
-        let t = self.mesh.tris.len() as u32;
-        self.mesh.tris.push(tri);
-        self.mesh.neighbours.push([NONE; 3]);
-        self.mesh.edge_ref.push([0; 3]);
-        self.mesh.tri_ref.push(tref);
-        self.tstamp.push(self.gen);
-        self.tseen.push(0);
-        self.tq.push(AtomicU64::new(Q_UNKNOWN));
-        self.log.push(t);
-        for v in tri {
-            self.vmod[v as usize] = self.gen;
-        }
-        t
-    }
-
-    /// Makes `t` (local edge `i`) and `u` (local edge `j`) neighbours; `u == NONE` makes the edge
-    /// a boundary edge.
-    #[inline]
-    pub(crate) fn link(&mut self, t: u32, i: usize, u: u32, j: usize) {
-        self.mesh.neighbours[t as usize][i] = u;
-        if u != NONE {
-            self.mesh.neighbours[u as usize][j] = t;
-        }
-    }
-
     /// Metric and field values at `p` from the source, or interpolated with `weights` over
     /// `verts` (metric by `params.interpolation`, fields linear). Field values go to `self.scratch_f`.
     pub(crate) fn sample(&mut self, p: DVec2, verts: &[u32], weights: &[f64]) -> Sym2 {
@@ -502,89 +350,5 @@ impl<'a> Ctx<'a> {
     }
 }
 
-/// `src` renumbered by `map` (old index -> new index, `NONE` for dropped entries) into a vector
-/// of length `n`; entries no old index maps to get `fill`.
-pub(crate) fn scatter<T: Copy>(src: &[T], map: &[u32], n: usize, fill: T) -> Vec<T> {
-    let mut out = vec![fill; n];
-    for (old, &new) in map.iter().enumerate() {
-        if new != NONE {
-            out[new as usize] = src[old];
-        }
-    }
-    out
-}
-
 /// Local index of `v` in `tri` (the caller knows it is there).
-#[inline]
-pub(crate) fn local(tri: [u32; 3], v: u32) -> usize {
-    if tri[0] == v {
-        0
-    } else if tri[1] == v {
-        1
-    } else {
-        2
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::adapt::{collapse, flip, smooth, split};
-    use crate::mesh::GridPattern;
-
-    /// Every quality the operators cached (computed by a check and stored on apply, or carried
-    /// through a renumbering) is bit-equal to a fresh [`Ctx::q`], in both quality modes.
-    #[test]
-    fn cached_qualities_are_exact() {
-        for exact in [false, true] {
-            let mut mesh =
-                Mesh2::rectangle(DVec2::ZERO, DVec2::ONE, 9, 9, GridPattern::default()).unwrap();
-            let mut metric: Vec<Sym2> = mesh
-                .points
-                .iter()
-                .map(|p| {
-                    let d = (p.y - 0.4 - 0.3 * p.x * p.x).abs();
-                    Sym2::from_sizes([0.08, 0.004 + 0.5 * d], DVec2::new(1.0, 0.6 * p.x))
-                })
-                .collect();
-            let mut fields: Vec<Vec<f64>> = Vec::new();
-            let params = OpParams {
-                l_min: std::f64::consts::FRAC_1_SQRT_2,
-                l_max: std::f64::consts::SQRT_2,
-                q_max: 5.0,
-                curve_tol: 0.0,
-                insertion: true,
-                interpolation: MetricInterpolation::LinearSizes,
-            };
-            let mut ctx = Ctx::new(&mut mesh, &mut metric, &mut fields, None, params);
-            if exact {
-                ctx = ctx.exact_quality();
-            }
-            let (mut cand, mut ops) = (Vec::new(), 0);
-            for round in 0..12 {
-                ops += split::pass(&mut ctx, &mut cand) + flip::pass(&mut ctx);
-                if round % 3 == 2 {
-                    ops += collapse::pass(&mut ctx) + smooth::pass(&mut ctx);
-                    ctx.renumber_spatially();
-                }
-            }
-            assert!(ops > 500, "too little work to test: {ops} operations");
-            let mut known = 0;
-            for t in 0..ctx.mesh.n_tris() {
-                let q = f64::from_bits(ctx.tq[t].load(Relaxed));
-                if ctx.mesh.is_deleted(t) || q.is_nan() {
-                    continue;
-                }
-                known += 1;
-                let fresh = ctx.q(ctx.mesh.tris[t]);
-                assert_eq!(
-                    q.to_bits(),
-                    fresh.to_bits(),
-                    "exact {exact}, tri {t}: {q} vs {fresh}"
-                );
-            }
-            assert!(known > ctx.mesh.n_tris() / 2, "only {known} cached");
-            ctx.mesh.check().unwrap();
-        }
-    }
-}
+pub(crate) use crate::mesh::local_index_of as local;

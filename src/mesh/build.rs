@@ -1,6 +1,8 @@
-//! Building a `Mesh2` from a list of points and triangles: validation and adjacency.
+//! Building a mesh from a list of points and triangles: validation and adjacency. The
+//! adjacency and the labels are topology ([`TriMesh::from_topology`]); [`Mesh2`] adds the
+//! coordinate and orientation checks.
 
-use super::{next, prev, Mesh2, NONE};
+use super::{next, prev, Mesh2, TriMesh, NONE};
 use crate::error::{MeshDefect, Result};
 use crate::geom::{orient2d, DVec2};
 
@@ -28,8 +30,37 @@ impl Mesh2 {
             .into());
         }
         let neighbours = build_adjacency(&tris)?;
+        Ok(TriMesh::assemble(points, tris, neighbours, tri_ref))
+    }
+}
+
+impl<P> TriMesh<P> {
+    /// Builds a mesh from points and triangles using only the connectivity (no coordinate is
+    /// read): the neighbour relation, boundary edges labelled 1, sub-domain labels 0, no corners.
+    /// The triangles must be consistently oriented (each interior edge traversed once in each
+    /// direction); for a closed surface there is no boundary.
+    ///
+    /// Rejected with a [`MeshDefect`] naming the first offending entity: out-of-range indices,
+    /// repeated vertices, duplicate triangles, inconsistent orientation, edges shared by more
+    /// than two triangles.
+    pub fn from_topology(points: Vec<P>, tris: Vec<[u32; 3]>) -> Result<TriMesh<P>> {
+        for (t, tri) in tris.iter().enumerate() {
+            validate_indices(t, tri, points.len())?;
+        }
+        let neighbours = build_adjacency(&tris)?;
+        let n = tris.len();
+        Ok(TriMesh::assemble(points, tris, neighbours, vec![0; n]))
+    }
+
+    /// A mesh from validated parts: edges labelled 1 on the boundary, 2 between sub-domains.
+    fn assemble(
+        points: Vec<P>,
+        tris: Vec<[u32; 3]>,
+        neighbours: Vec<[u32; 3]>,
+        tri_ref: Vec<i32>,
+    ) -> TriMesh<P> {
         let np = points.len();
-        let mut mesh = Mesh2 {
+        let mut mesh = TriMesh {
             points,
             edge_ref: vec![[0; 3]; tris.len()],
             tris,
@@ -53,7 +84,7 @@ impl Mesh2 {
             }
         }
         mesh.rebuild_vertex_seeds();
-        Ok(mesh)
+        mesh
     }
 
     /// Recomputes `vert_tri` (one live triangle per vertex, `NONE` for unreferenced vertices).
@@ -95,19 +126,7 @@ pub(crate) fn validate_elements(points: &[DVec2], tris: &[[u32; 3]]) -> Result<(
         if tri[0] == NONE {
             continue;
         }
-        for &v in tri {
-            if v as usize >= points.len() {
-                return Err(MeshDefect::IndexOutOfRange {
-                    tri: t,
-                    vertex: v as u64,
-                    n_points: points.len(),
-                }
-                .into());
-            }
-        }
-        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
-            return Err(MeshDefect::RepeatedVertex { tri: t }.into());
-        }
+        validate_indices(t, tri, points.len())?;
         let [a, b, c] = tri.map(|v| points[v as usize]);
         let o = orient2d(a, b, c);
         if o == 0.0 {
@@ -120,6 +139,27 @@ pub(crate) fn validate_elements(points: &[DVec2], tris: &[[u32; 3]]) -> Result<(
             }
             .into());
         }
+    }
+    Ok(())
+}
+
+/// Index checks on the live triangle `t`: corners in range and distinct.
+pub(crate) fn validate_indices(t: usize, tri: &[u32; 3], n_points: usize) -> Result<()> {
+    if tri[0] == NONE {
+        return Ok(());
+    }
+    for &v in tri {
+        if v as usize >= n_points {
+            return Err(MeshDefect::IndexOutOfRange {
+                tri: t,
+                vertex: v as u64,
+                n_points,
+            }
+            .into());
+        }
+    }
+    if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+        return Err(MeshDefect::RepeatedVertex { tri: t }.into());
     }
     Ok(())
 }

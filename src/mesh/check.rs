@@ -1,6 +1,8 @@
-//! The one invariant checker, called after every operator in tests.
+//! The one invariant checker, called after every operator in tests: [`Mesh2::check`] for planar
+//! meshes, its topological part [`TriMesh::check_topology`] for any point type.
 
-use super::{next, prev, Mesh2, NONE};
+use super::build::{validate_elements, validate_indices};
+use super::{next, prev, Mesh2, TriMesh, NONE};
 use crate::error::{MeshDefect, Result};
 use crate::geom::{orient2d, DVec2};
 use std::f64::consts::PI;
@@ -13,134 +15,32 @@ impl Mesh2 {
     /// overlapping fans (angle sum at a vertex at most a full turn) and no hanging vertex inside a
     /// boundary edge (conformity). Tombstoned triangles are skipped.
     pub fn check(&self) -> Result<()> {
-        let nt = self.tris.len();
-        let np = self.points.len();
-        for (len, detail) in [
-            (
-                self.neighbours.len(),
-                "neighbour array length differs from triangle count",
-            ),
-            (
-                self.tri_ref.len(),
-                "sub-domain label array length differs from triangle count",
-            ),
-            (
-                self.edge_ref.len(),
-                "edge label array length differs from triangle count",
-            ),
-        ] {
-            if len != nt {
-                return Err(MeshDefect::BadLabel {
-                    tri: len.min(nt),
-                    detail,
-                }
-                .into());
-            }
-        }
-        for (len, detail) in [
-            (
-                self.vert_ref.len(),
-                "vertex label array length differs from vertex count",
-            ),
-            (
-                self.corner.len(),
-                "corner flag array length differs from vertex count",
-            ),
-            (
-                self.required.len(),
-                "required flag array length differs from vertex count",
-            ),
-            (
-                self.vert_tri.len(),
-                "vertex seed array length differs from vertex count",
-            ),
-        ] {
-            if len != np {
-                return Err(MeshDefect::BadVertexData {
-                    vertex: len.min(np),
-                    detail,
-                }
-                .into());
-            }
-        }
-        super::build::validate_elements(&self.points, &self.tris)?;
+        self.check_lengths()?;
+        validate_elements(&self.points, &self.tris)?;
         self.check_adjacency()?;
-        self.check_vertices()?;
-        self.check_fans()?;
+        let referenced = self.check_seeds()?;
+        self.check_duplicate_points(&referenced)?;
+        self.check_fans(Some(&self.angle_sums()))?;
         self.check_hanging_vertices()?;
         Ok(())
     }
 
-    fn check_adjacency(&self) -> Result<()> {
+    /// The sum of the interior angles at each vertex over the live triangles.
+    fn angle_sums(&self) -> Vec<f64> {
+        let mut angle = vec![0.0f64; self.points.len()];
         for t in self.live_tris() {
+            let p = self.tri_points(t);
             for i in 0..3 {
-                let nb = self.neighbours[t][i];
-                if nb == NONE {
-                    continue;
-                }
-                let bad = |detail| -> Result<()> {
-                    Err(MeshDefect::BadAdjacency {
-                        tri: t,
-                        edge: i,
-                        detail,
-                    }
-                    .into())
-                };
-                if nb as usize >= self.tris.len() {
-                    return bad("neighbour index out of range");
-                }
-                if self.is_deleted(nb as usize) {
-                    return bad("neighbour is a deleted triangle");
-                }
-                let Some(j) = self.mirror_edge(t, nb as usize) else {
-                    return bad("neighbour does not point back (asymmetric adjacency)");
-                };
-                let [a, b] = self.edge_vertices(t, i);
-                let [c, d] = self.edge_vertices(nb as usize, j);
-                if !(a == d && b == c) {
-                    return bad("neighbour does not share this edge in opposite direction");
-                }
-                if self.edge_ref[t][i] != self.edge_ref[nb as usize][j] {
-                    return Err(MeshDefect::BadLabel {
-                        tri: t,
-                        detail: "an interior edge has different labels on its two sides",
-                    }
-                    .into());
-                }
+                let (e1, e2) = (p[next(i)] - p[i], p[prev(i)] - p[i]);
+                angle[self.tris[t][i] as usize] += e1.perp_dot(e2).atan2(e1.dot(e2));
             }
         }
-        Ok(())
+        angle
     }
 
-    fn check_vertices(&self) -> Result<()> {
-        let mut referenced = vec![false; self.points.len()];
-        for t in self.live_tris() {
-            for &v in &self.tris[t] {
-                referenced[v as usize] = true;
-            }
-        }
-        for (v, &seed) in self.vert_tri.iter().enumerate() {
-            if seed == NONE {
-                if referenced[v] {
-                    return Err(MeshDefect::BadVertexData {
-                        vertex: v,
-                        detail: "vertex is used by a triangle but has no seed triangle",
-                    }
-                    .into());
-                }
-                continue;
-            }
-            let s = seed as usize;
-            if s >= self.tris.len() || self.is_deleted(s) || self.local_index(s, v as u32).is_none()
-            {
-                return Err(MeshDefect::BadVertexData {
-                    vertex: v,
-                    detail: "seed triangle does not contain the vertex",
-                }
-                .into());
-            }
-        }
-        // Duplicate coordinates: sort indices by (x, y).
+    /// No two referenced vertices at the same coordinates.
+    fn check_duplicate_points(&self, referenced: &[bool]) -> Result<()> {
+        // Sort indices by (x, y).
         let mut order: Vec<usize> = (0..self.points.len()).filter(|&v| referenced[v]).collect();
         order.sort_unstable_by(|&a, &b| {
             let (p, q) = (self.points[a], self.points[b]);
@@ -153,39 +53,6 @@ impl Mesh2 {
                     second: w[0].max(w[1]),
                 }
                 .into());
-            }
-        }
-        Ok(())
-    }
-
-    /// Every referenced vertex: its fan, walked from its seed, must reach every triangle that uses
-    /// it (a single manifold fan), and the angles around it must not exceed a full turn.
-    fn check_fans(&self) -> Result<()> {
-        let mut uses = vec![0u32; self.points.len()];
-        let mut angle = vec![0.0f64; self.points.len()];
-        for t in self.live_tris() {
-            let p = self.tri_points(t);
-            for i in 0..3 {
-                uses[self.tris[t][i] as usize] += 1;
-                let (e1, e2) = (p[next(i)] - p[i], p[prev(i)] - p[i]);
-                angle[self.tris[t][i] as usize] += e1.perp_dot(e2).atan2(e1.dot(e2));
-            }
-        }
-        for v in 0..self.points.len() {
-            if uses[v] == 0 {
-                continue;
-            }
-            let mut walked = 0u32;
-            self.for_each_fan_triangle(v as u32, |_| walked += 1);
-            if walked != uses[v] {
-                return Err(MeshDefect::BadVertexData {
-                    vertex: v,
-                    detail: "the triangles around the vertex do not form a single fan (non-manifold vertex)",
-                }
-                .into());
-            }
-            if angle[v] > 2.0 * PI * (1.0 + 1e-9) {
-                return Err(MeshDefect::OverlappingTriangles { vertex: v }.into());
             }
         }
         Ok(())
@@ -247,6 +114,181 @@ impl Mesh2 {
                         }
                     }
                 }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<P> TriMesh<P> {
+    /// Verifies the invariants that do not involve coordinates and reports the first defect
+    /// found: array lengths, index ranges, distinct corners, symmetric adjacency that matches
+    /// the shared edge, equal labels on both sides of an interior edge, valid vertex seeds, and
+    /// a single fan around every vertex (manifold). [`Mesh2::check`] adds the geometric checks.
+    pub fn check_topology(&self) -> Result<()> {
+        self.check_lengths()?;
+        for (t, tri) in self.tris.iter().enumerate() {
+            validate_indices(t, tri, self.points.len())?;
+        }
+        self.check_adjacency()?;
+        self.check_seeds()?;
+        self.check_fans(None)
+    }
+
+    /// Every per-triangle and per-vertex array has the right length.
+    fn check_lengths(&self) -> Result<()> {
+        let nt = self.tris.len();
+        let np = self.points.len();
+        for (len, detail) in [
+            (
+                self.neighbours.len(),
+                "neighbour array length differs from triangle count",
+            ),
+            (
+                self.tri_ref.len(),
+                "sub-domain label array length differs from triangle count",
+            ),
+            (
+                self.edge_ref.len(),
+                "edge label array length differs from triangle count",
+            ),
+        ] {
+            if len != nt {
+                return Err(MeshDefect::BadLabel {
+                    tri: len.min(nt),
+                    detail,
+                }
+                .into());
+            }
+        }
+        for (len, detail) in [
+            (
+                self.vert_ref.len(),
+                "vertex label array length differs from vertex count",
+            ),
+            (
+                self.corner.len(),
+                "corner flag array length differs from vertex count",
+            ),
+            (
+                self.required.len(),
+                "required flag array length differs from vertex count",
+            ),
+            (
+                self.vert_tri.len(),
+                "vertex seed array length differs from vertex count",
+            ),
+        ] {
+            if len != np {
+                return Err(MeshDefect::BadVertexData {
+                    vertex: len.min(np),
+                    detail,
+                }
+                .into());
+            }
+        }
+        Ok(())
+    }
+
+    fn check_adjacency(&self) -> Result<()> {
+        for t in self.live_tris() {
+            for i in 0..3 {
+                let nb = self.neighbours[t][i];
+                if nb == NONE {
+                    continue;
+                }
+                let bad = |detail| -> Result<()> {
+                    Err(MeshDefect::BadAdjacency {
+                        tri: t,
+                        edge: i,
+                        detail,
+                    }
+                    .into())
+                };
+                if nb as usize >= self.tris.len() {
+                    return bad("neighbour index out of range");
+                }
+                if self.is_deleted(nb as usize) {
+                    return bad("neighbour is a deleted triangle");
+                }
+                let Some(j) = self.mirror_edge(t, nb as usize) else {
+                    return bad("neighbour does not point back (asymmetric adjacency)");
+                };
+                let [a, b] = self.edge_vertices(t, i);
+                let [c, d] = self.edge_vertices(nb as usize, j);
+                if !(a == d && b == c) {
+                    return bad("neighbour does not share this edge in opposite direction");
+                }
+                if self.edge_ref[t][i] != self.edge_ref[nb as usize][j] {
+                    return Err(MeshDefect::BadLabel {
+                        tri: t,
+                        detail: "an interior edge has different labels on its two sides",
+                    }
+                    .into());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Every vertex seed holds its vertex; every referenced vertex has one. Returns which
+    /// vertices a live triangle references.
+    fn check_seeds(&self) -> Result<Vec<bool>> {
+        let mut referenced = vec![false; self.points.len()];
+        for t in self.live_tris() {
+            for &v in &self.tris[t] {
+                referenced[v as usize] = true;
+            }
+        }
+        for (v, &seed) in self.vert_tri.iter().enumerate() {
+            if seed == NONE {
+                if referenced[v] {
+                    return Err(MeshDefect::BadVertexData {
+                        vertex: v,
+                        detail: "vertex is used by a triangle but has no seed triangle",
+                    }
+                    .into());
+                }
+                continue;
+            }
+            let s = seed as usize;
+            if s >= self.tris.len() || self.is_deleted(s) || self.local_index(s, v as u32).is_none()
+            {
+                return Err(MeshDefect::BadVertexData {
+                    vertex: v,
+                    detail: "seed triangle does not contain the vertex",
+                }
+                .into());
+            }
+        }
+        Ok(referenced)
+    }
+
+    /// Every referenced vertex: its fan, walked from its seed, must reach every triangle that uses
+    /// it (a single manifold fan), and with `angle` (the angle sums of [`Mesh2::check`]) the
+    /// angles around it must not exceed a full turn.
+    fn check_fans(&self, angle: Option<&[f64]>) -> Result<()> {
+        let mut uses = vec![0u32; self.points.len()];
+        for t in self.live_tris() {
+            for &v in &self.tris[t] {
+                uses[v as usize] += 1;
+            }
+        }
+        for v in 0..self.points.len() {
+            if uses[v] == 0 {
+                continue;
+            }
+            let mut walked = 0u32;
+            self.for_each_fan_triangle(v as u32, |_| walked += 1);
+            if walked != uses[v] {
+                return Err(MeshDefect::BadVertexData {
+                    vertex: v,
+                    detail: "the triangles around the vertex do not form a single fan (non-manifold vertex)",
+                }
+                .into());
+            }
+            if angle.is_some_and(|a| a[v] > 2.0 * PI * (1.0 + 1e-9)) {
+                return Err(MeshDefect::OverlappingTriangles { vertex: v }.into());
             }
         }
         Ok(())

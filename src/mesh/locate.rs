@@ -7,10 +7,20 @@ use crate::geom::{barycentric, orient2d, DVec2};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Location {
     /// Inside (or on the boundary of) triangle `tri`, with barycentric coordinates `bary`.
-    Inside { tri: u32, bary: [f64; 3] },
+    Inside {
+        /// The triangle.
+        tri: u32,
+        /// Barycentric coordinates in it.
+        bary: [f64; 3],
+    },
     /// Outside the mesh; `tri` is the boundary triangle where the walk left the domain (closest
     /// in the walk's direction), `bary` the (partly negative) barycentric coordinates there.
-    Outside { tri: u32, bary: [f64; 3] },
+    Outside {
+        /// The boundary triangle nearest along the walk.
+        tri: u32,
+        /// Barycentric coordinates there (some negative).
+        bary: [f64; 3],
+    },
 }
 
 impl Location {

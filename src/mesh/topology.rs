@@ -1,10 +1,10 @@
-//! Pure topology on `Mesh2`: local indices, vertex fans and rings, patches, boundary edges,
-//! compaction. Nothing here reads coordinates.
+//! Pure topology on [`TriMesh`]: local indices, vertex fans and rings, patches, boundary edges,
+//! edge labels, compaction. Nothing here reads coordinates.
 
-use super::{next, prev, Mesh2, NONE};
+use super::{next, prev, TriMesh, NONE};
 use rayon::prelude::*;
 
-impl Mesh2 {
+impl<P> TriMesh<P> {
     /// Local index (0..3) of vertex `v` in triangle `t`, if it is a corner of it.
     #[inline]
     pub fn local_index(&self, t: usize, v: u32) -> Option<usize> {
@@ -84,7 +84,7 @@ impl Mesh2 {
         ccw[..n].iter().for_each(|&t| f(t));
     }
 
-    /// [`Mesh2::for_each_fan_triangle`] for fans of more than 24 triangles (two traversals).
+    /// [`TriMesh::for_each_fan_triangle`] for fans of more than 24 triangles (two traversals).
     fn for_each_fan_triangle_long(&self, v: u32, seed: u32, mut f: impl FnMut(u32)) {
         // Rotate clockwise to the start of an open fan (or back to the seed for a closed one).
         let mut start = seed;
@@ -294,15 +294,21 @@ impl Mesh2 {
         loops
     }
 
-    /// Removes deleted triangles and unreferenced vertices, renumbering everything. Returns the map
-    /// old vertex index -> new index (`NONE` for removed vertices).
-    pub fn compact(&mut self) -> Vec<u32> {
-        let used = self.used_vertices();
-        let vorder: Vec<u32> = (0..self.points.len() as u32)
-            .filter(|&v| used[v as usize])
-            .collect();
-        let torder: Vec<u32> = self.live_tris().map(|t| t as u32).collect();
-        self.renumber(&vorder, &torder).0
+    /// Labels the edge `(a, b)` with `label` on both of its sides; `false` when there is no such
+    /// edge.
+    pub fn label_edge(&mut self, a: u32, b: u32, label: i32) -> bool {
+        let mut found = false;
+        for t in self.vertex_fan(a) {
+            let t = t as usize;
+            for i in 0..3 {
+                let [x, y] = self.edge_vertices(t, i);
+                if (x == a && y == b) || (x == b && y == a) {
+                    self.edge_ref[t][i] = label;
+                    found = true;
+                }
+            }
+        }
+        found
     }
 
     /// Which vertices some live triangle references.
@@ -314,6 +320,19 @@ impl Mesh2 {
             }
         }
         used
+    }
+}
+
+impl<P: Copy + Send + Sync> TriMesh<P> {
+    /// Removes deleted triangles and unreferenced vertices, renumbering everything. Returns the map
+    /// old vertex index -> new index (`NONE` for removed vertices).
+    pub fn compact(&mut self) -> Vec<u32> {
+        let used = self.used_vertices();
+        let vorder: Vec<u32> = (0..self.points.len() as u32)
+            .filter(|&v| used[v as usize])
+            .collect();
+        let torder: Vec<u32> = self.live_tris().map(|t| t as u32).collect();
+        self.renumber(&vorder, &torder).0
     }
 
     /// Renumbers the mesh: `vorder` lists the old indices of the kept vertices in their new order,

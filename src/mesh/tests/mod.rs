@@ -1,4 +1,6 @@
 use super::*;
+
+mod edits;
 use crate::error::{Error, MeshDefect};
 use crate::geom::DVec2;
 
