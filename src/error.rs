@@ -137,6 +137,9 @@ pub enum Error {
     /// A feature of an input file or request that is not supported.
     #[error("unsupported: {0}")]
     Unsupported(String),
+    /// A request, or an adaptation under way, exceeds a vertex limit.
+    #[error("too large: {0}")]
+    TooLarge(String),
 }
 
 impl From<MeshDefect> for Error {

@@ -49,6 +49,10 @@ pub struct AdaptOptions {
     /// background cannot jump by orders of magnitude between neighbouring vertices of the
     /// adapted mesh. Sizes only shrink. Only for metrics that no [`MetricSource`] re-evaluates.
     pub gradation: Option<f64>,
+    /// Stop with [`crate::Error::TooLarge`] when a refinement pass leaves more vertices than
+    /// this (default `None`: no limit): a guard against a metric that asks for far more
+    /// vertices than expected. The mesh is then left as the pass left it (valid, not compacted).
+    pub max_vertices: Option<usize>,
 }
 
 /// Which vertices the one smoothing sweep of a split/collapse cycle examines. The final sweeps
@@ -82,6 +86,7 @@ impl Default for AdaptOptions {
             interpolation: MetricInterpolation::LogEuclidean,
             cycle_smoothing: CycleSmoothing::Relaxing,
             gradation: None,
+            max_vertices: None,
         }
     }
 }
@@ -130,6 +135,11 @@ impl AdaptOptions {
     /// Sets the size gradation applied at the start of every cycle (`None`: none).
     pub fn gradation(mut self, v: Option<f64>) -> Self {
         self.gradation = v;
+        self
+    }
+    /// Sets the vertex limit of the refinement passes (`None`: none).
+    pub fn max_vertices(mut self, v: Option<usize>) -> Self {
+        self.max_vertices = v;
         self
     }
     /// Sets which vertices the smoothing sweep of each cycle examines.
@@ -362,6 +372,12 @@ pub fn adapt(
                 }
                 let n = run(&mut ctx, PassKind::Split, &mut rep)?;
                 ns += n;
+                if let Some(limit) = opts.max_vertices.filter(|&l| ctx.mesh.n_points() > l) {
+                    return Err(Error::TooLarge(format!(
+                        "the adaptation grew past {limit} vertices ({} after a refinement pass)",
+                        ctx.mesh.n_points()
+                    )));
+                }
                 if n == 0 {
                     break;
                 }

@@ -167,7 +167,9 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
                 None => estimate::shape_vertices(shape.as_ref(), lm, domain).0,
             };
             refuse_above(estimated, opts.max_vertices)?;
-            let (mesh, metric, u, rep, source) = adapt_shape(shape.as_ref(), domain, opts)?;
+            // A guard well above the estimate, for a run that grows far past it.
+            let cap = (GROWTH_GUARD * estimated).max(GUARD_FLOOR).min(opts.max_vertices);
+            let (mesh, metric, u, rep, source) = adapt_shape(shape.as_ref(), domain, opts, cap)?;
             (mesh, metric, Some(u), Some(shape), rep, source, estimated)
         }
         AdaptTarget::LevelSet { mut mesh, u } => {
@@ -183,7 +185,7 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
                 &mut metric,
                 &mut fields,
                 None,
-                &AdaptOptions::default(),
+                &AdaptOptions::default().max_vertices(Some(opts.max_vertices as usize)),
             )?;
             let u = fields.pop().unwrap_or_default();
             let source = describe(opts, "recovered from the P1 level set");
@@ -201,7 +203,9 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
                 &mut metric,
                 &mut [],
                 None,
-                &metric_file_options().gradation(opts.hgrad),
+                &metric_file_options()
+                    .gradation(opts.hgrad)
+                    .max_vertices(Some(opts.max_vertices as usize)),
             )?;
             let source = match opts.hgrad {
                 Some(b) => format!("metric read from file, graded with factor {b}"),
@@ -264,9 +268,15 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
     })
 }
 
+/// The growth guard of a shape adaptation: this many times the estimated vertex count, and at
+/// least [`GUARD_FLOOR`] vertices.
+const GROWTH_GUARD: f64 = 8.0;
+/// The smallest growth guard.
+const GUARD_FLOOR: f64 = 5e4;
+
 fn refuse_above(estimated: f64, limit: f64) -> Result<()> {
     if estimated > limit {
-        return Err(Error::InvalidInput(format!(
+        return Err(Error::TooLarge(format!(
             "the metric asks for about {estimated:.2e} vertices (complexity estimate), above the \
              limit of {limit:.2e}: raise eps or hmin, or the limit (--max-vertices)"
         )));
@@ -284,7 +294,7 @@ fn check_zero_level(u: &[f64]) -> Result<()> {
     if lo <= 0.0 && hi >= 0.0 {
         return Ok(());
     }
-    Err(Error::InvalidInput(format!(
+    Err(Error::EmptyLevelSet(format!(
         "the level set has no zero level in the domain: its values lie in [{lo:.3e}, {hi:.3e}] \
          at all {} vertices",
         u.len()
@@ -322,12 +332,15 @@ fn adapt_shape(
     shape: &dyn Shape,
     domain: (DVec2, DVec2),
     opts: &RunOptions,
+    cap: f64,
 ) -> Result<ShapeAdapted> {
     let lm = opts.metric;
+    let guarded = AdaptOptions::default().max_vertices(Some(cap as usize));
     match opts.target_vertices {
         None => {
             let so = ShapeAdaptOptions {
                 metric: lm,
+                adapt: guarded,
                 ..ShapeAdaptOptions::default()
             };
             let (mesh, u, rep) = adapt_to_shape(shape, domain, &so)?;
@@ -351,13 +364,7 @@ fn adapt_shape(
                 let u: Vec<f64> = mesh.points.iter().map(|&p| shape.distance(p)).collect();
                 metric = hm.field(&mesh, &u)?;
                 let before = mesh.n_points();
-                let rep = adapt(
-                    &mut mesh,
-                    &mut metric,
-                    &mut [],
-                    None,
-                    &AdaptOptions::default(),
-                )?;
+                let rep = adapt(&mut mesh, &mut metric, &mut [], None, &guarded)?;
                 total.absorb(&rep);
                 total.converged = rep.converged;
                 let change = (mesh.n_points() as f64 - before as f64).abs() / before as f64;

@@ -95,7 +95,31 @@ fn derivatives(shape: &dyn Shape, p: DVec2) -> (f64, DVec2, Sym2) {
 /// metric length). With `features`, a required vertex sits on each corner of the shape inside
 /// the domain ([`Shape::corners`]), joined by a labelled edge to a required vertex on the kink
 /// of the distance (`kink_edge`).
+///
+/// With [`ShapeAdaptOptions::gradation`] the metric at new vertices is interpolated from the
+/// graded vertex metrics; where the first coarse rounds see the band of eq. (6) at a few
+/// vertices only, that interpolation can ask for far more vertices than the metric itself. When
+/// [`AdaptOptions::max_vertices`] stops such a run, the rounds start again without gradation, the
+/// metric evaluated exactly at every new vertex.
 pub fn adapt_to_shape(
+    shape: &dyn Shape,
+    domain: (DVec2, DVec2),
+    opts: &ShapeAdaptOptions,
+) -> Result<(Mesh2, Vec<f64>, AdaptReport)> {
+    match shape_rounds(shape, domain, opts) {
+        Err(Error::TooLarge(_)) if opts.gradation.is_some() && opts.adapt.max_vertices.is_some() => {
+            let exact = ShapeAdaptOptions {
+                gradation: None,
+                ..opts.clone()
+            };
+            shape_rounds(shape, domain, &exact)
+        }
+        r => r,
+    }
+}
+
+/// The evaluate-metric / adapt rounds of [`adapt_to_shape`].
+fn shape_rounds(
     shape: &dyn Shape,
     domain: (DVec2, DVec2),
     opts: &ShapeAdaptOptions,
