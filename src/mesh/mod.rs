@@ -22,12 +22,14 @@
 mod build;
 mod cdt;
 mod check;
+mod field;
 mod grid;
 mod locate;
 mod order;
 mod topology;
 
 pub use cdt::{circle_points, from_polygon, DomainLoop, LoopKind, PolygonDomain};
+pub use field::check_p1_field;
 pub use grid::GridPattern;
 pub use locate::Location;
 
