@@ -28,11 +28,11 @@
 //! for the level sets that only feed the metric.
 
 use super::characteristics::{foot, locate_all, FootOptions, Velocity};
-use super::evaluate::{check_field, FieldEvaluator, Inflow, Interpolation};
+use super::evaluate::{FieldEvaluator, Inflow, Interpolation};
 use super::interim::DUNAVANT4;
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
-use crate::mesh::{Location, Mesh2};
+use crate::mesh::{check_p1_field, Location, Mesh2};
 use rayon::prelude::*;
 
 /// Which discrete form of `u^{n+1} = u^n ∘ X^n` is computed.
@@ -180,7 +180,7 @@ pub fn pull_back(
             cg.residual, cg.iterations
         )));
     }
-    check_field(new, &u, "projected field")?;
+    check_p1_field(new.n_points(), &u, "projected field")?;
     Ok(u)
 }
 

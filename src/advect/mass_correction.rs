@@ -7,10 +7,9 @@
 //! area for `c ≤ -max u` and to 0 for `c ≥ -min u`, so a root is bracketed; it is found by the
 //! Illinois variant of regula falsi with bisection as safeguard.
 
-use super::evaluate::check_field;
 use crate::error::{Error, Result};
 use crate::levelset::interface::enclosed_area;
-use crate::mesh::Mesh2;
+use crate::mesh::{check_p1_field, Mesh2};
 
 /// Outcome of a mass correction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,7 +37,7 @@ pub fn correct_mass(
     target: f64,
     rel_tol: f64,
 ) -> Result<MassCorrection> {
-    check_field(mesh, u, "level set")?;
+    check_p1_field(mesh.n_points(), u, "level set")?;
     let total = mesh.area();
     if !(target > 0.0 && target < total) {
         return Err(Error::InvalidInput(format!(
