@@ -85,6 +85,9 @@ impl Entity {
     }
 }
 
+/// An edge written as a line element: the index of its curve entity and its vertices.
+type Line = (usize, [u32; 2]);
+
 /// How a mesh is laid out in entities.
 struct Layout<'m> {
     mesh: &'m Mesh2,
@@ -92,7 +95,7 @@ struct Layout<'m> {
     corners: Vec<usize>,
     /// The edges written as line elements (every boundary edge and every labelled interior
     /// edge) with the index of their curve entity.
-    lines: Vec<(usize, [u32; 2])>,
+    lines: Vec<Line>,
     /// Surface entity index of each `tri_ref`.
     surf_of: BTreeMap<i32, usize>,
     /// Point, curve and surface entities.
@@ -298,7 +301,7 @@ impl<'m> Layout<'m> {
 
 /// One curve entity per edge label, numbered in order of first appearance over
 /// [`Mesh2::edges`], and the edges written as lines (boundary or labelled) with their curve.
-fn curve_lines(mesh: &Mesh2) -> (BTreeMap<i32, usize>, Vec<(usize, [u32; 2])>) {
+fn curve_lines(mesh: &Mesh2) -> (BTreeMap<i32, usize>, Vec<Line>) {
     let mut curve_of: BTreeMap<i32, usize> = BTreeMap::new();
     let mut lines = Vec::new();
     for (_, t, i) in mesh.edges() {
