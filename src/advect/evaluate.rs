@@ -27,7 +27,10 @@ pub enum Interpolation {
     P1,
     /// Limited quadratic reconstruction (see the module documentation). `disagreement` is the
     /// ratio `max‖H_j − H_k‖ / max‖H_k‖` above which the element falls back to P1.
-    Quadratic { disagreement: f64 },
+    Quadratic {
+        /// Largest Hessian disagreement ratio for which the quadratic is used.
+        disagreement: f64,
+    },
 }
 
 impl Interpolation {

@@ -16,7 +16,9 @@ use crate::metric::Sym2;
 /// basis functions.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct P1Geom {
+    /// Area of the triangle.
     pub area: f64,
+    /// Gradient of the barycentric basis function of each vertex.
     pub grad: [DVec2; 3],
 }
 

@@ -21,11 +21,17 @@ use std::path::Path;
 /// indices in memory).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Medit3 {
+    /// Vertex coordinates.
     pub points: Vec<DVec3>,
+    /// Vertex labels.
     pub point_ref: Vec<i32>,
+    /// Vertices of each tetrahedron.
     pub tets: Vec<[u32; 4]>,
+    /// Tetrahedron labels.
     pub tet_ref: Vec<i32>,
+    /// Vertices of each (boundary or interface) triangle.
     pub tris: Vec<[u32; 3]>,
+    /// Triangle labels.
     pub tri_ref: Vec<i32>,
 }
 

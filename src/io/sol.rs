@@ -72,7 +72,9 @@ impl SolField {
 /// A solution file: its dimension and its fields (all of the same length).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sol {
+    /// Space dimension (2 or 3).
     pub dim: usize,
+    /// The fields, in file order.
     pub fields: Vec<SolField>,
 }
 
