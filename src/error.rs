@@ -16,38 +16,93 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 pub enum MeshDefect {
     /// A triangle refers to a vertex index that does not exist.
     IndexOutOfRange {
+        /// The triangle.
         tri: usize,
+        /// The vertex index it holds.
         vertex: u64,
+        /// The number of vertices.
         n_points: usize,
     },
     /// A triangle repeats a vertex.
-    RepeatedVertex { tri: usize },
+    RepeatedVertex {
+        /// The triangle.
+        tri: usize,
+    },
     /// A vertex coordinate is NaN or infinite.
-    NonFiniteCoordinate { vertex: usize },
+    NonFiniteCoordinate {
+        /// The vertex.
+        vertex: usize,
+    },
     /// A triangle has zero signed area.
-    DegenerateTriangle { tri: usize },
+    DegenerateTriangle {
+        /// The triangle.
+        tri: usize,
+    },
     /// A triangle is oriented clockwise (negative signed area).
-    InvertedTriangle { tri: usize, signed_area: f64 },
+    InvertedTriangle {
+        /// The triangle.
+        tri: usize,
+        /// Its signed area (negative).
+        signed_area: f64,
+    },
     /// Two triangles have the same three vertices.
-    DuplicateTriangle { first: usize, second: usize },
+    DuplicateTriangle {
+        /// The first of the two triangles.
+        first: usize,
+        /// The second.
+        second: usize,
+    },
     /// Two vertices have identical coordinates.
-    DuplicateVertex { first: usize, second: usize },
+    DuplicateVertex {
+        /// The first of the two vertices.
+        first: usize,
+        /// The second.
+        second: usize,
+    },
     /// More than two triangles share the edge `(a, b)`.
-    NonManifoldEdge { a: usize, b: usize },
+    NonManifoldEdge {
+        /// One end of the edge.
+        a: usize,
+        /// The other end.
+        b: usize,
+    },
     /// The neighbour relation is not symmetric or does not match the shared edge.
     BadAdjacency {
+        /// The triangle.
         tri: usize,
+        /// Its local edge.
         edge: usize,
+        /// What is inconsistent.
         detail: &'static str,
     },
     /// A vertex of the mesh lies strictly inside a boundary edge (a hanging node).
-    HangingVertex { vertex: usize, a: usize, b: usize },
+    HangingVertex {
+        /// The hanging vertex.
+        vertex: usize,
+        /// One end of the boundary edge.
+        a: usize,
+        /// The other end.
+        b: usize,
+    },
     /// Triangles around a vertex overlap (their angles add up to more than a full turn).
-    OverlappingTriangles { vertex: usize },
+    OverlappingTriangles {
+        /// The vertex.
+        vertex: usize,
+    },
     /// Label arrays do not match the element count, or an interior edge has two labels.
-    BadLabel { tri: usize, detail: &'static str },
+    BadLabel {
+        /// The triangle (the array length when a whole array is wrong).
+        tri: usize,
+        /// What is wrong.
+        detail: &'static str,
+    },
     /// A per-vertex array has the wrong length or a bad seed triangle.
-    BadVertexData { vertex: usize, detail: &'static str },
+    BadVertexData {
+        /// The vertex (the array length when a whole array is wrong).
+        vertex: usize,
+        /// What is wrong.
+        detail: &'static str,
+    },
 }
 
 impl fmt::Display for MeshDefect {
@@ -105,15 +160,20 @@ pub enum Error {
     /// A file could not be opened, read, written or renamed.
     #[error("{}: {source}", path.display())]
     Io {
+        /// The file.
         path: PathBuf,
+        /// The operating-system error.
         #[source]
         source: std::io::Error,
     },
     /// A file was read but its content is malformed.
     #[error("{}:{line}: {msg}", path.display())]
     Parse {
+        /// The file.
         path: PathBuf,
+        /// The 1-based line.
         line: usize,
+        /// What is wrong there.
         msg: String,
     },
     /// The mesh is not a valid conforming, counter-clockwise triangulation.
@@ -121,10 +181,20 @@ pub enum Error {
     InvalidMesh(MeshDefect),
     /// A metric tensor is not symmetric positive definite (NaN, negative or zero eigenvalue).
     #[error("invalid metric at vertex {vertex}: {msg}")]
-    InvalidMetric { vertex: usize, msg: String },
+    InvalidMetric {
+        /// The vertex.
+        vertex: usize,
+        /// What is wrong with its tensor.
+        msg: String,
+    },
     /// A field has the wrong length or holds NaN values.
     #[error("invalid field '{name}': {msg}")]
-    InvalidField { name: String, msg: String },
+    InvalidField {
+        /// The name of the field.
+        name: String,
+        /// What is wrong, naming the first bad entity.
+        msg: String,
+    },
     /// A level set has no zero crossing where one is needed.
     #[error("empty level set: {0}")]
     EmptyLevelSet(String),

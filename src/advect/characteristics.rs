@@ -28,6 +28,7 @@ impl<F: Fn(f64, DVec2) -> DVec2 + Sync> Velocity for F {
 /// The rigid rotation `v = omega (-y, x)` around the origin (004 §5.1 with `omega = 1`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rotation {
+    /// Angular velocity (counter-clockwise positive).
     pub omega: f64,
 }
 
@@ -54,6 +55,7 @@ pub enum FootScheme {
 /// How the feet are computed: scheme and number of equal sub-steps over `[t0, t1]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootOptions {
+    /// The time integrator.
     pub scheme: FootScheme,
     /// Number of sub-steps (at least 1).
     pub substeps: usize,

@@ -16,7 +16,7 @@
 
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
-use crate::mesh::{Location, Mesh2, NONE};
+use crate::mesh::{check_p1_field, Location, Mesh2, NONE};
 use crate::metric::Sym2;
 use std::sync::Arc;
 
@@ -27,7 +27,10 @@ pub enum Interpolation {
     P1,
     /// Limited quadratic reconstruction (see the module documentation). `disagreement` is the
     /// ratio `max‖H_j − H_k‖ / max‖H_k‖` above which the element falls back to P1.
-    Quadratic { disagreement: f64 },
+    Quadratic {
+        /// Largest Hessian disagreement ratio for which the quadratic is used.
+        disagreement: f64,
+    },
 }
 
 impl Interpolation {
@@ -62,23 +65,6 @@ impl std::fmt::Debug for Inflow {
 /// [`crate::recovery::recover_ls`] (least-squares Taylor fit, 004 §4.3).
 pub type Derivatives = crate::recovery::Recovered;
 
-/// Checks that `u` has one finite value per vertex of `mesh`.
-pub fn check_field(mesh: &Mesh2, u: &[f64], name: &str) -> Result<()> {
-    if u.len() != mesh.n_points() {
-        return Err(Error::InvalidField {
-            name: name.into(),
-            msg: format!("{} values for {} vertices", u.len(), mesh.n_points()),
-        });
-    }
-    if let Some(i) = u.iter().position(|v| !v.is_finite()) {
-        return Err(Error::InvalidField {
-            name: name.into(),
-            msg: format!("non-finite value at vertex {i}"),
-        });
-    }
-    Ok(())
-}
-
 /// A P1 field on a mesh, ready to be evaluated at located points.
 pub struct FieldEvaluator<'a> {
     mesh: &'a Mesh2,
@@ -101,7 +87,7 @@ impl<'a> FieldEvaluator<'a> {
         interp: Interpolation,
         inflow: Inflow,
     ) -> Result<FieldEvaluator<'a>> {
-        check_field(mesh, u, "u")?;
+        check_p1_field(mesh.n_points(), u, "u")?;
         let deriv = match interp {
             Interpolation::P1 => None,
             Interpolation::Quadratic { disagreement } => {
@@ -130,7 +116,7 @@ impl<'a> FieldEvaluator<'a> {
         disagreement: f64,
         inflow: Inflow,
     ) -> Result<FieldEvaluator<'a>> {
-        check_field(mesh, u, "u")?;
+        check_p1_field(mesh.n_points(), u, "u")?;
         if deriv.gradient.len() != u.len() || deriv.hessian.len() != u.len() {
             return Err(Error::InvalidInput(
                 "derivatives do not match the field length".into(),

@@ -74,6 +74,7 @@ impl Default for FixedPointOptions {
 pub struct PeriodResult {
     /// The final mesh of the period and `u^{n+1}` on it.
     pub mesh: Mesh2,
+    /// `u^{n+1}` on [`PeriodResult::mesh`].
     pub u: Vec<f64>,
     /// Adapt/advect iterations performed.
     pub iterations: usize,
@@ -81,8 +82,9 @@ pub struct PeriodResult {
     pub l1_changes: Vec<f64>,
     /// Whether the last change was below the tolerance.
     pub converged: bool,
-    /// Wall-clock seconds spent in the adapter and in advection/transfer.
+    /// Wall-clock seconds spent in the adapter.
     pub adapt_seconds: f64,
+    /// Wall-clock seconds spent in advection and transfer.
     pub advect_seconds: f64,
 }
 

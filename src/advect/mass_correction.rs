@@ -7,18 +7,18 @@
 //! area for `c ≤ -max u` and to 0 for `c ≥ -min u`, so a root is bracketed; it is found by the
 //! Illinois variant of regula falsi with bisection as safeguard.
 
-use super::evaluate::check_field;
 use crate::error::{Error, Result};
 use crate::levelset::interface::enclosed_area;
-use crate::mesh::Mesh2;
+use crate::mesh::{check_p1_field, Mesh2};
 
 /// Outcome of a mass correction.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MassCorrection {
     /// The shift added to every nodal value.
     pub shift: f64,
-    /// The area of `{u < 0}` before and after.
+    /// The area of `{u < 0}` before the shift.
     pub area_before: f64,
+    /// The area of `{u < 0}` after the shift.
     pub area_after: f64,
     /// Evaluations of the area function.
     pub iterations: usize,
@@ -38,7 +38,7 @@ pub fn correct_mass(
     target: f64,
     rel_tol: f64,
 ) -> Result<MassCorrection> {
-    check_field(mesh, u, "level set")?;
+    check_p1_field(mesh.n_points(), u, "level set")?;
     let total = mesh.area();
     if !(target > 0.0 && target < total) {
         return Err(Error::InvalidInput(format!(
@@ -59,20 +59,60 @@ pub fn correct_mass(
     let f = |c: f64| shifted_area(mesh, u, c).map(|a| a - target);
     // Bracket: f(a) >= 0 >= f(b).
     let span = (umax - umin).max(1e-300);
-    let (mut a, mut b) = (-umax - 1e-9 * span, -umin + 1e-9 * span);
-    let (mut fa, mut fb) = (f(a)?, f(b)?);
-    let mut evals = 2;
-    // Start from the bracket [c0 - d, c0 + d] around c = 0 when it holds, to save evaluations.
+    let (a, b) = (-umax - 1e-9 * span, -umin + 1e-9 * span);
+    let mut br = Bracket {
+        a,
+        b,
+        fa: f(a)?,
+        fb: f(b)?,
+    };
+    // Narrow the bracket to c = 0 on the side where f(0) lies, to save evaluations.
     let f0 = area_before - target;
-    evals += 1;
     if f0 >= 0.0 {
-        a = 0.0;
-        fa = f0;
+        br.a = 0.0;
+        br.fa = f0;
     } else {
-        b = 0.0;
-        fb = f0;
+        br.b = 0.0;
+        br.fb = f0;
     }
-    let tol = rel_tol * target;
+    let (c, fc, evals) = illinois(f, br, f0, rel_tol * target, 3)?;
+    for v in u.iter_mut() {
+        *v += c;
+    }
+    Ok(MassCorrection {
+        shift: c,
+        area_before,
+        area_after: fc + target,
+        iterations: evals,
+    })
+}
+
+/// A bracket `[a, b]` of a root of a non-increasing function: `f(a) >= 0 >= f(b)`.
+struct Bracket {
+    a: f64,
+    b: f64,
+    fa: f64,
+    fb: f64,
+}
+
+/// The root `c` of `f` in the bracket with `|f(c)| <= tol`, by the Illinois variant of regula
+/// falsi (the retained end's value is halved when the same end moves twice), with a bisection
+/// step every eighth evaluation or when the secant leaves the bracket. `0` is the starting
+/// iterate with value `f0`; `evals` counts the evaluations made so far. Returns `c`, `f(c)` and
+/// the evaluation count; errors after 200 evaluations.
+fn illinois(
+    f: impl Fn(f64) -> Result<f64>,
+    br: Bracket,
+    f0: f64,
+    tol: f64,
+    mut evals: usize,
+) -> Result<(f64, f64, usize)> {
+    let Bracket {
+        mut a,
+        mut b,
+        mut fa,
+        mut fb,
+    } = br;
     let mut c = if f0.abs() <= tol { 0.0 } else { f64::NAN };
     let mut side = 0i8;
     let mut fc = f0;
@@ -117,13 +157,5 @@ pub fn correct_mass(
             side = -1;
         }
     }
-    for v in u.iter_mut() {
-        *v += c;
-    }
-    Ok(MassCorrection {
-        shift: c,
-        area_before,
-        area_after: fc + target,
-        iterations: evals,
-    })
+    Ok((c, fc, evals))
 }

@@ -17,9 +17,13 @@ const CHUNK: usize = 4096;
 /// (strictly increasing) and values `val[..]` at the same positions.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Csr {
+    /// Number of rows and columns.
     pub n: usize,
+    /// Start of each row in `col` and `val` (`n + 1` entries).
     pub row_ptr: Vec<usize>,
+    /// Column index of each stored entry.
     pub col: Vec<u32>,
+    /// Value of each stored entry.
     pub val: Vec<f64>,
 }
 

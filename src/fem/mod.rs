@@ -2,6 +2,8 @@
 //!
 //! - [`quadrature`]: triangle and tetrahedron rules (degrees 1, 2, 5, 7 and more).
 //! - [`csr`]: the square sparse matrix [`Csr`] built from element-to-dof maps.
+//! - [`rect_csr`]: the rectangular sparse matrix [`RectCsr`] (off-diagonal blocks such as a
+//!   discrete divergence and its transpose).
 //! - [`assembly`]: deterministic parallel element assembly.
 //! - [`p1`]: P1 mass, lumped mass, stiffness (scalar or tensor coefficient), load, errors.
 //! - [`p1_bubble`]: the MINI element (P1-bubble / P1) with the bubble condensed.
@@ -15,7 +17,9 @@ pub mod lagrange;
 pub mod p1;
 pub mod p1_bubble;
 pub mod quadrature;
+pub mod rect_csr;
 pub mod solve;
 
 pub use csr::Csr;
+pub use rect_csr::RectCsr;
 pub use solve::{CgOptions, CgReport, PrecondKind};

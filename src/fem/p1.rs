@@ -9,14 +9,16 @@ use super::csr::Csr;
 use super::quadrature::tri_rule;
 use crate::error::{Error, MeshDefect, Result};
 use crate::geom::DVec2;
-use crate::mesh::Mesh2;
+use crate::mesh::{check_p1_field, Mesh2};
 use crate::metric::Sym2;
 
 /// Geometry of one P1 triangle: its area and the (constant) gradients of the three barycentric
 /// basis functions.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct P1Geom {
+    /// Area of the triangle.
     pub area: f64,
+    /// Gradient of the barycentric basis function of each vertex.
     pub grad: [DVec2; 3],
 }
 
@@ -225,7 +227,7 @@ pub fn interpolate(mesh: &Mesh2, f: impl Fn(DVec2) -> f64) -> Vec<f64> {
 
 /// `‖u_h - u‖_{L2}` for the P1 field `uh`, with a degree-7 rule (at least `degree`) per element.
 pub fn l2_error(mesh: &Mesh2, uh: &[f64], u: impl Fn(DVec2) -> f64) -> Result<f64> {
-    check_field(mesh, uh)?;
+    check_p1_field(mesh.n_points(), uh, "P1 field")?;
     let rule = tri_rule(7);
     let s: f64 = mesh
         .live_tris()
@@ -244,7 +246,7 @@ pub fn l2_error(mesh: &Mesh2, uh: &[f64], u: impl Fn(DVec2) -> f64) -> Result<f6
 
 /// `|u_h - u|_{H1} = ‖∇u_h - ∇u‖_{L2}` for the P1 field `uh`, degree-7 rule per element.
 pub fn h1_seminorm_error(mesh: &Mesh2, uh: &[f64], grad_u: impl Fn(DVec2) -> DVec2) -> Result<f64> {
-    check_field(mesh, uh)?;
+    check_p1_field(mesh.n_points(), uh, "P1 field")?;
     let rule = tri_rule(7);
     let s: f64 = mesh
         .live_tris()
@@ -262,7 +264,7 @@ pub fn h1_seminorm_error(mesh: &Mesh2, uh: &[f64], grad_u: impl Fn(DVec2) -> DVe
 
 /// The gradient of the P1 field `u` on each triangle slot (zero on tombstones).
 pub fn gradients(mesh: &Mesh2, u: &[f64]) -> Result<Vec<DVec2>> {
-    check_field(mesh, u)?;
+    check_p1_field(mesh.n_points(), u, "P1 field")?;
     Ok((0..mesh.n_tris())
         .map(|t| {
             if mesh.is_deleted(t) {
@@ -274,14 +276,4 @@ pub fn gradients(mesh: &Mesh2, u: &[f64]) -> Result<Vec<DVec2>> {
                 .sum()
         })
         .collect())
-}
-
-fn check_field(mesh: &Mesh2, u: &[f64]) -> Result<()> {
-    if u.len() != mesh.n_points() {
-        return Err(Error::InvalidField {
-            name: "P1 field".into(),
-            msg: format!("{} values for {} vertices", u.len(), mesh.n_points()),
-        });
-    }
-    Ok(())
 }

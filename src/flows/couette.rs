@@ -17,9 +17,13 @@ use crate::mesh::Mesh2;
 /// Parameters of the Couette case.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CouetteCase {
+    /// Centre of the disk.
     pub centre: DVec2,
+    /// Radius of the disk.
     pub radius: f64,
+    /// Viscosity inside the disk.
     pub mu_in: f64,
+    /// Viscosity of the surrounding fluid.
     pub mu_out: f64,
     /// Smoothed-Heaviside half-width (0 = sharp sign at the quadrature points); used by
     /// [`InterfaceViscosity::Quadrature`] only.
@@ -59,7 +63,9 @@ impl Default for CouetteCase {
 /// Result of a Couette solve.
 #[derive(Debug, Clone)]
 pub struct CouetteResult {
+    /// The Stokes solution.
     pub solution: StokesSolution,
+    /// Statistics of the solve.
     pub report: StokesReport,
     /// Rigid-motion fit on the vertices strictly inside the disk.
     pub fit: RigidFit,

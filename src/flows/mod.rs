@@ -2,7 +2,6 @@
 
 pub mod couette;
 pub mod stokes;
-mod stokes_uzawa;
 pub mod streamlines;
 
 pub use couette::{CouetteCase, CouetteResult, InterfaceViscosity};

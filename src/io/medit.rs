@@ -21,11 +21,17 @@ use std::path::Path;
 /// indices in memory).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Medit3 {
+    /// Vertex coordinates.
     pub points: Vec<DVec3>,
+    /// Vertex labels.
     pub point_ref: Vec<i32>,
+    /// Vertices of each tetrahedron.
     pub tets: Vec<[u32; 4]>,
+    /// Tetrahedron labels.
     pub tet_ref: Vec<i32>,
+    /// Vertices of each (boundary or interface) triangle.
     pub tris: Vec<[u32; 3]>,
+    /// Triangle labels.
     pub tri_ref: Vec<i32>,
 }
 
@@ -105,6 +111,17 @@ pub(crate) fn skip_section(tk: &mut Tokens) {
     }
 }
 
+/// The Medit sections read (lower case); any other section is skipped.
+const KNOWN: [&str; 6] = [
+    "vertices",
+    "triangles",
+    "tetrahedra",
+    "edges",
+    "corners",
+    "requiredvertices",
+];
+
+/// Reads the keywords and sections of a Medit mesh up to `End` or the end of the text.
 fn parse(path: &Path, text: &str) -> Result<MeditData> {
     let mut tk = Tokens::new(path, text, Some(b'#'));
     let mut d = MeditData::default();
@@ -128,111 +145,134 @@ fn parse(path: &Path, text: &str) -> Result<MeditData> {
             }
             None => {}
         }
-        let known = [
-            "vertices",
-            "triangles",
-            "tetrahedra",
-            "edges",
-            "corners",
-            "requiredvertices",
-        ];
-        if known.contains(&lower.as_str()) {
+        if KNOWN.contains(&lower.as_str()) {
             if seen.contains(&lower) {
                 return Err(tk.err_at(line, format!("second {kw} section")));
             }
             seen.push(lower.clone());
         }
-        match lower.as_str() {
-            "vertices" => {
-                if d.dim == 0 {
-                    return Err(tk.err_at(line, "Vertices section before Dimension"));
-                }
-                let n = tk.count("number of vertices")?;
-                d.has_vertices = true;
-                let cap = tk.capacity(n, 2 * d.dim + 2);
-                d.coords.reserve(cap * d.dim);
-                d.point_ref.reserve(cap);
-                for k in 0..n {
-                    let what = format!("vertex {} of {n}", k + 1);
-                    for _ in 0..d.dim {
-                        d.coords.push(tk.real(&what)?);
-                    }
-                    d.point_ref.push(tk.int(&what)?);
-                    d.point_line.push(tk.token_line());
-                }
-            }
-            "triangles" => {
-                let n = tk.count("number of triangles")?;
-                let cap = tk.capacity(n, 8);
-                d.tris.reserve(cap);
-                for k in 0..n {
-                    let what = format!("triangle {} of {n}", k + 1);
-                    let mut t = [0u32; 3];
-                    for v in &mut t {
-                        *v = vertex_index(&mut tk, &what)?;
-                    }
-                    d.tris.push(t);
-                    d.tri_ref.push(tk.int(&what)?);
-                    d.tri_line.push(tk.token_line());
-                }
-            }
-            "tetrahedra" => {
-                let n = tk.count("number of tetrahedra")?;
-                d.tets.reserve(tk.capacity(n, 10));
-                for k in 0..n {
-                    let what = format!("tetrahedron {} of {n}", k + 1);
-                    let mut t = [0u32; 4];
-                    for v in &mut t {
-                        *v = vertex_index(&mut tk, &what)?;
-                    }
-                    d.tets.push(t);
-                    d.tet_ref.push(tk.int(&what)?);
-                    d.tet_line.push(tk.token_line());
-                }
-            }
-            "edges" => {
-                let n = tk.count("number of edges")?;
-                d.has_edges = true;
-                d.edges.reserve(tk.capacity(n, 6));
-                for k in 0..n {
-                    let what = format!("edge {} of {n}", k + 1);
-                    let a = vertex_index(&mut tk, &what)?;
-                    let b = vertex_index(&mut tk, &what)?;
-                    let label = tk.int(&what)?;
-                    d.edges.push(RawEdge {
-                        v: [a, b],
-                        label,
-                        line: tk.token_line(),
-                    });
-                }
-            }
-            "corners" | "requiredvertices" => {
-                let n = tk.count(kw)?;
-                let mut list = Vec::with_capacity(tk.capacity(n, 2));
-                for k in 0..n {
-                    let v = vertex_index(&mut tk, &format!("{kw} entry {} of {n}", k + 1))?;
-                    list.push((v, tk.token_line()));
-                }
-                if lower == "corners" {
-                    d.corners = list;
-                } else {
-                    d.required = list;
-                }
-            }
-            "quadrilaterals" | "hexahedra" | "prisms" | "pyramids" => {
-                return Err(tk.err_at(
-                    line,
-                    format!("{kw} are not supported (only triangles and tetrahedra)"),
-                ));
-            }
-            _ => skip_section(&mut tk),
-        }
+        d.read_section(&mut tk, kw, &lower, line)?;
     }
     d.last_line = tk.token_line();
     if !d.has_vertices {
         return Err(Error::parse(path, d.last_line, "no Vertices section"));
     }
     Ok(d)
+}
+
+impl MeditData {
+    /// The data of section `kw` (`lower` in lower case), whose keyword is on `line`.
+    fn read_section(&mut self, tk: &mut Tokens, kw: &str, lower: &str, line: usize) -> Result<()> {
+        match lower {
+            "vertices" => self.read_vertices(tk, line),
+            "triangles" => self.read_triangles(tk),
+            "tetrahedra" => self.read_tetrahedra(tk),
+            "edges" => self.read_edges(tk),
+            "corners" => {
+                self.corners = read_vertex_list(tk, kw)?;
+                Ok(())
+            }
+            "requiredvertices" => {
+                self.required = read_vertex_list(tk, kw)?;
+                Ok(())
+            }
+            "quadrilaterals" | "hexahedra" | "prisms" | "pyramids" => Err(tk.err_at(
+                line,
+                format!("{kw} are not supported (only triangles and tetrahedra)"),
+            )),
+            _ => {
+                skip_section(tk);
+                Ok(())
+            }
+        }
+    }
+
+    /// `Vertices`: count, then `dim` coordinates and a label per vertex (after `Dimension`).
+    fn read_vertices(&mut self, tk: &mut Tokens, line: usize) -> Result<()> {
+        if self.dim == 0 {
+            return Err(tk.err_at(line, "Vertices section before Dimension"));
+        }
+        let n = tk.count("number of vertices")?;
+        self.has_vertices = true;
+        let cap = tk.capacity(n, 2 * self.dim + 2);
+        self.coords.reserve(cap * self.dim);
+        self.point_ref.reserve(cap);
+        for k in 0..n {
+            let what = format!("vertex {} of {n}", k + 1);
+            for _ in 0..self.dim {
+                self.coords.push(tk.real(&what)?);
+            }
+            self.point_ref.push(tk.int(&what)?);
+            self.point_line.push(tk.token_line());
+        }
+        Ok(())
+    }
+
+    /// `Triangles`: count, then three vertex indices and a label per triangle.
+    fn read_triangles(&mut self, tk: &mut Tokens) -> Result<()> {
+        let n = tk.count("number of triangles")?;
+        let cap = tk.capacity(n, 8);
+        self.tris.reserve(cap);
+        for k in 0..n {
+            let what = format!("triangle {} of {n}", k + 1);
+            let mut t = [0u32; 3];
+            for v in &mut t {
+                *v = vertex_index(tk, &what)?;
+            }
+            self.tris.push(t);
+            self.tri_ref.push(tk.int(&what)?);
+            self.tri_line.push(tk.token_line());
+        }
+        Ok(())
+    }
+
+    /// `Tetrahedra`: count, then four vertex indices and a label per tetrahedron.
+    fn read_tetrahedra(&mut self, tk: &mut Tokens) -> Result<()> {
+        let n = tk.count("number of tetrahedra")?;
+        self.tets.reserve(tk.capacity(n, 10));
+        for k in 0..n {
+            let what = format!("tetrahedron {} of {n}", k + 1);
+            let mut t = [0u32; 4];
+            for v in &mut t {
+                *v = vertex_index(tk, &what)?;
+            }
+            self.tets.push(t);
+            self.tet_ref.push(tk.int(&what)?);
+            self.tet_line.push(tk.token_line());
+        }
+        Ok(())
+    }
+
+    /// `Edges`: count, then two vertex indices and a label per edge.
+    fn read_edges(&mut self, tk: &mut Tokens) -> Result<()> {
+        let n = tk.count("number of edges")?;
+        self.has_edges = true;
+        self.edges.reserve(tk.capacity(n, 6));
+        for k in 0..n {
+            let what = format!("edge {} of {n}", k + 1);
+            let a = vertex_index(tk, &what)?;
+            let b = vertex_index(tk, &what)?;
+            let label = tk.int(&what)?;
+            self.edges.push(RawEdge {
+                v: [a, b],
+                label,
+                line: tk.token_line(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// `Corners` or `RequiredVertices` (`kw`): count, then one vertex index per entry, each with
+/// its line.
+fn read_vertex_list(tk: &mut Tokens, kw: &str) -> Result<Vec<(u32, usize)>> {
+    let n = tk.count(kw)?;
+    let mut list = Vec::with_capacity(tk.capacity(n, 2));
+    for k in 0..n {
+        let v = vertex_index(tk, &format!("{kw} entry {} of {n}", k + 1))?;
+        list.push((v, tk.token_line()));
+    }
+    Ok(list)
 }
 
 /// Parses a two-dimensional Medit mesh from `text` (`path` is used in messages). A

@@ -8,7 +8,9 @@ use std::path::Path;
 /// A triangulated surface in 3D (0-based indices).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SurfaceMesh {
+    /// Vertex coordinates.
     pub points: Vec<DVec3>,
+    /// Vertices of each triangle.
     pub tris: Vec<[u32; 3]>,
 }
 

@@ -72,7 +72,9 @@ impl SolField {
 /// A solution file: its dimension and its fields (all of the same length).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sol {
+    /// Space dimension (2 or 3).
     pub dim: usize,
+    /// The fields, in file order.
     pub fields: Vec<SolField>,
 }
 
@@ -133,57 +135,69 @@ pub fn parse_sol(path: &Path, text: &str, expected: Option<usize>) -> Result<Sol
         if out.is_some() {
             return Err(tk.err_at(line, "second SolAtVertices section"));
         }
-        let n = tk.count("number of vertices")?;
-        if let Some(m) = expected {
-            if m != n {
-                return Err(tk.err(format!(
-                    "the solution has {n} vertices but the mesh has {m}"
-                )));
-            }
-        }
-        let nf = tk.count("number of fields")?;
-        if nf == 0 {
-            return Err(tk.err("SolAtVertices with no fields"));
-        }
-        let mut types = Vec::with_capacity(nf.min(64));
-        for k in 0..nf {
-            let t: i64 = tk.int(&format!("type of field {}", k + 1))?;
-            if !(1..=3).contains(&t) {
-                return Err(tk.err(format!(
-                    "field {}: unsupported solution type {t} (1 scalar, 2 vector, 3 tensor)",
-                    k + 1
-                )));
-            }
-            types.push(t as u8);
-        }
-        let cap = tk.capacity(n, 2);
-        let mut fields: Vec<SolField> = types
-            .iter()
-            .map(|&t| match (t, dim) {
-                (1, _) => SolField::Scalar(Vec::with_capacity(cap)),
-                (2, _) => SolField::Vector(Vec::with_capacity(cap)),
-                (_, 2) => SolField::Tensor2(Vec::with_capacity(cap)),
-                _ => SolField::Tensor3(Vec::with_capacity(cap)),
-            })
-            .collect();
-        for v in 0..n {
-            for (k, f) in fields.iter_mut().enumerate() {
-                let what = format!("vertex {} of {n}, field {}", v + 1, k + 1);
-                let mut x = [0.0f64; 6];
-                for c in x.iter_mut().take(f.components(dim)) {
-                    *c = tk.real(&what)?;
-                }
-                match f {
-                    SolField::Scalar(s) => s.push(x[0]),
-                    SolField::Vector(s) => s.push([x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]),
-                    SolField::Tensor2(s) => s.push(Sym2::new(x[0], x[1], x[2])),
-                    SolField::Tensor3(s) => s.push(x),
-                }
-            }
-        }
-        out = Some(Sol { dim, fields });
+        out = Some(read_sol_at_vertices(&mut tk, dim, expected)?);
     }
     out.ok_or_else(|| Error::parse(path, tk.token_line(), "no SolAtVertices section"))
+}
+
+/// The data of a `SolAtVertices` section in dimension `dim`: vertex count (must equal
+/// `expected` if given), field count and types, then the values vertex by vertex.
+fn read_sol_at_vertices(tk: &mut Tokens, dim: usize, expected: Option<usize>) -> Result<Sol> {
+    let n = tk.count("number of vertices")?;
+    if let Some(m) = expected {
+        if m != n {
+            return Err(tk.err(format!(
+                "the solution has {n} vertices but the mesh has {m}"
+            )));
+        }
+    }
+    let types = read_field_types(tk)?;
+    let cap = tk.capacity(n, 2);
+    let mut fields: Vec<SolField> = types
+        .iter()
+        .map(|&t| match (t, dim) {
+            (1, _) => SolField::Scalar(Vec::with_capacity(cap)),
+            (2, _) => SolField::Vector(Vec::with_capacity(cap)),
+            (_, 2) => SolField::Tensor2(Vec::with_capacity(cap)),
+            _ => SolField::Tensor3(Vec::with_capacity(cap)),
+        })
+        .collect();
+    for v in 0..n {
+        for (k, f) in fields.iter_mut().enumerate() {
+            let what = format!("vertex {} of {n}, field {}", v + 1, k + 1);
+            let mut x = [0.0f64; 6];
+            for c in x.iter_mut().take(f.components(dim)) {
+                *c = tk.real(&what)?;
+            }
+            match f {
+                SolField::Scalar(s) => s.push(x[0]),
+                SolField::Vector(s) => s.push([x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]),
+                SolField::Tensor2(s) => s.push(Sym2::new(x[0], x[1], x[2])),
+                SolField::Tensor3(s) => s.push(x),
+            }
+        }
+    }
+    Ok(Sol { dim, fields })
+}
+
+/// The field count (at least one) and the type of each field (1 scalar, 2 vector, 3 tensor).
+fn read_field_types(tk: &mut Tokens) -> Result<Vec<u8>> {
+    let nf = tk.count("number of fields")?;
+    if nf == 0 {
+        return Err(tk.err("SolAtVertices with no fields"));
+    }
+    let mut types = Vec::with_capacity(nf.min(64));
+    for k in 0..nf {
+        let t: i64 = tk.int(&format!("type of field {}", k + 1))?;
+        if !(1..=3).contains(&t) {
+            return Err(tk.err(format!(
+                "field {}: unsupported solution type {t} (1 scalar, 2 vector, 3 tensor)",
+                k + 1
+            )));
+        }
+        types.push(t as u8);
+    }
+    Ok(types)
 }
 
 /// Reads a `.sol` file.

@@ -11,7 +11,7 @@
 use super::shapes::Shape;
 use crate::error::{Error, Result};
 use crate::geom::{point_segment_distance, DVec2};
-use crate::mesh::{next, Mesh2};
+use crate::mesh::{check_p1_field, next, Mesh2};
 use rstar::primitives::Line;
 use rstar::RTree;
 use std::collections::HashMap;
@@ -51,31 +51,6 @@ impl Polyline {
     pub fn length(&self) -> f64 {
         self.segments().map(|(a, b)| (b - a).length()).sum()
     }
-}
-
-/// Checks the field length and values.
-fn check_field(mesh: &Mesh2, u: &[f64]) -> Result<()> {
-    if u.len() != mesh.n_points() {
-        return Err(Error::InvalidField {
-            name: "level set".into(),
-            msg: format!(
-                "{} values for a mesh of {} vertices",
-                u.len(),
-                mesh.n_points()
-            ),
-        });
-    }
-    for t in mesh.live_tris() {
-        for &v in &mesh.tris[t] {
-            if !u[v as usize].is_finite() {
-                return Err(Error::InvalidField {
-                    name: "level set".into(),
-                    msg: format!("value {} at vertex {v}", u[v as usize]),
-                });
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The crossing point on the edge `(a, b)` with `u_a`, `u_b` of different kinds.
@@ -132,7 +107,7 @@ fn edge_key(mesh: &Mesh2, t: usize, i: usize) -> u64 {
 /// Errors: [`Error::InvalidField`] for a wrong length or a NaN/infinite value,
 /// [`Error::EmptyLevelSet`] when no triangle is cut.
 pub fn extract_zero_level(mesh: &Mesh2, u: &[f64]) -> Result<Vec<Polyline>> {
-    check_field(mesh, u)?;
+    check_p1_field(mesh.n_points(), u, "level set")?;
     // Oriented segments as (start edge key, end edge key, start point, end point).
     let mut segs: Vec<(u64, u64, DVec2, DVec2)> = Vec::new();
     for t in mesh.live_tris() {
@@ -199,7 +174,7 @@ pub fn extract_zero_level(mesh: &Mesh2, u: &[f64]) -> Result<Vec<Polyline>> {
 /// fraction `a² / ((a - b)(a - c))` of the area). Works when the interface meets the mesh
 /// boundary. Errors as [`extract_zero_level`], except that an empty level set is not an error.
 pub fn enclosed_area(mesh: &Mesh2, u: &[f64]) -> Result<f64> {
-    check_field(mesh, u)?;
+    check_p1_field(mesh.n_points(), u, "level set")?;
     let mut total = 0.0;
     for t in mesh.live_tris() {
         let vals = mesh.tris[t].map(|v| u[v as usize]);
@@ -230,7 +205,7 @@ pub fn enclosed_area(mesh: &Mesh2, u: &[f64]) -> Result<f64> {
 /// Total length of the zero level of the P1 field `u` (sum of the segment lengths over cut
 /// triangles; zero for an empty level set). Errors on a wrong length or NaN values.
 pub fn interface_length(mesh: &Mesh2, u: &[f64]) -> Result<f64> {
-    check_field(mesh, u)?;
+    check_p1_field(mesh.n_points(), u, "level set")?;
     Ok(mesh
         .live_tris()
         .filter_map(|t| {

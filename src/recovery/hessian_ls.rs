@@ -33,7 +33,7 @@ pub struct Recovered {
 /// the first bad vertex); [`crate::Error::InvalidInput`] if a connected component of the mesh has
 /// fewer than 6 vertices.
 pub fn recover_ls(mesh: &Mesh2, u: &[f64]) -> Result<Recovered> {
-    input::check_field(mesh, u)?;
+    crate::mesh::check_p1_field(mesh.n_points(), u, "u")?;
     input::check_mesh(mesh)?;
     let (gradient, hessian) = (0..mesh.n_points() as u32)
         .into_par_iter()

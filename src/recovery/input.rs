@@ -9,36 +9,6 @@ use crate::mesh::{Mesh2, NONE};
 /// coefficients (004 §4.3: `d(d+1)/2` Hessian coefficients plus value and gradient).
 pub const MIN_COMPONENT_VERTICES: usize = 6;
 
-/// `u` must hold one finite value per vertex of `mesh`. The error names the first bad vertex.
-pub(crate) fn check_field(mesh: &Mesh2, u: &[f64]) -> Result<()> {
-    let n = mesh.n_points();
-    if u.len() != n {
-        let msg = if u.len() < n {
-            format!(
-                "{} values for {n} vertices: vertex {} has no value",
-                u.len(),
-                u.len()
-            )
-        } else {
-            format!(
-                "{} values for {n} vertices: value {n} has no vertex",
-                u.len()
-            )
-        };
-        return Err(Error::InvalidField {
-            name: "u".into(),
-            msg,
-        });
-    }
-    if let Some(v) = u.iter().position(|x| !x.is_finite()) {
-        return Err(Error::InvalidField {
-            name: "u".into(),
-            msg: format!("vertex {v} has the non-finite value {}", u[v]),
-        });
-    }
-    Ok(())
-}
-
 /// Array lengths and triangle indices are consistent (what the ring walks index with), and every
 /// connected component of the live triangles has at least [`MIN_COMPONENT_VERTICES`] vertices.
 /// The error names the smallest vertex of the first (by vertex index) undersized component.

@@ -59,7 +59,7 @@ where
 /// the first bad vertex); [`crate::Error::InvalidInput`] if a connected component of the mesh has
 /// fewer than 6 vertices.
 pub fn hessian_double_l2(mesh: &Mesh2, u: &[f64]) -> Result<Vec<Sym2>> {
-    input::check_field(mesh, u)?;
+    crate::mesh::check_p1_field(mesh.n_points(), u, "u")?;
     input::check_mesh(mesh)?;
     let nt = mesh.n_tris();
     let areas: Vec<f64> = (0..nt)

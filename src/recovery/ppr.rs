@@ -24,7 +24,7 @@ use rayon::prelude::*;
 /// the first bad vertex); [`crate::Error::InvalidInput`] if a connected component of the mesh has
 /// fewer than 6 vertices.
 pub fn gradient_ppr(mesh: &Mesh2, u: &[f64]) -> Result<Vec<DVec2>> {
-    input::check_field(mesh, u)?;
+    crate::mesh::check_p1_field(mesh.n_points(), u, "u")?;
     input::check_mesh(mesh)?;
     Ok((0..mesh.n_points() as u32)
         .into_par_iter()

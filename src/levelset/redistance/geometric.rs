@@ -28,28 +28,11 @@ use rayon::prelude::*;
 use super::bvh::Bvh;
 use crate::error::{Error, Result};
 use crate::geom::{point_segment_distance, DVec2, DVec3};
-use crate::mesh::Mesh2;
+use crate::mesh::{check_p1_field, Mesh2};
 
 /// Vertices per parallel chunk: each chunk is processed sequentially with the previous answer as
 /// the first upper bound, so consecutive (usually nearby) vertices make queries cheap.
 const CHUNK: usize = 2048;
-
-/// Check that `u` has one finite value per vertex.
-pub(crate) fn check_field(u: &[f64], n_points: usize, name: &str) -> Result<()> {
-    if u.len() != n_points {
-        return Err(Error::InvalidField {
-            name: name.into(),
-            msg: format!("{} values for {} vertices", u.len(), n_points),
-        });
-    }
-    if let Some(i) = u.iter().position(|x| !x.is_finite()) {
-        return Err(Error::InvalidField {
-            name: name.into(),
-            msg: format!("value at vertex {i} is {} (must be finite)", u[i]),
-        });
-    }
-    Ok(())
-}
 
 /// The point where the zero level crosses the edge `(a, b)` with `u_a u_b < 0`, computed from the
 /// lower-numbered end so that every cell sharing the edge gets the same bits.
@@ -115,7 +98,7 @@ pub(crate) fn zero_segments(mesh: &Mesh2, u: &[f64]) -> Vec<[DVec2; 2]> {
 /// Errors: [`Error::InvalidField`] if `u` has the wrong length or a non-finite value;
 /// [`Error::EmptyLevelSet`] if `u` has no zero on the mesh (all values of one strict sign).
 pub fn redistance_geometric(mesh: &Mesh2, u: &[f64]) -> Result<Vec<f64>> {
-    check_field(u, mesh.n_points(), "u")?;
+    check_p1_field(mesh.n_points(), u, "u")?;
     let segs = zero_segments(mesh, u);
     if segs.is_empty() {
         return Err(Error::EmptyLevelSet(format!(
@@ -295,7 +278,7 @@ pub(crate) fn point_triangle_distance(p: DVec3, a: DVec3, b: DVec3, c: DVec3) ->
 /// of the P1 field `u` (a triangle soup), sign kept: the 3D analogue of
 /// [`redistance_geometric`], with the same guarantees (module documentation).
 pub fn redistance_geometric_3d(points: &[DVec3], tets: &[[u32; 4]], u: &[f64]) -> Result<Vec<f64>> {
-    check_field(u, points.len(), "u")?;
+    check_p1_field(points.len(), u, "u")?;
     let tris = zero_triangles(points, tets, u);
     if tris.is_empty() {
         return Err(Error::EmptyLevelSet(format!(

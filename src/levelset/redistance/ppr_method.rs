@@ -112,7 +112,7 @@ fn validate(phi: &[f64], n_nodes: usize, opts: &PprOptions) -> Result<()> {
             opts.tol, opts.max_outer, opts.max_newton, opts.layers
         )));
     }
-    super::geometric::check_field(phi, n_nodes, "phi")
+    crate::mesh::check_p1_field(n_nodes, phi, "phi")
 }
 
 /// PPR redistancing of a P1 or P2 field on a triangle mesh (003 §6). For `degree = 2`, `phi` is
