@@ -44,7 +44,7 @@ const fn reported(
     }
 }
 
-/// The reported Zalesak points (labelled "reported issue 3" in the CSV): BAMG (FreeFem++ `adaptmesh`), mmg2d after six
+/// The reported Zalesak points: BAMG (FreeFem++ `adaptmesh`), mmg2d after six
 /// fixed-point passes, and "isotropic adaptation needs 26,000–54,000 vertices and a uniform mesh
 /// 641,601 vertices for errors of this size" — these three carry no measured error and are
 /// placed at the target errors (Hausdorff 5e-4, area 5e-5). The full sweep measures that very

@@ -2,6 +2,7 @@
 //! the uniform grids, the fitted slopes, the anisotropy gain, the installed peers on the Zalesak
 //! disk, and the CSV and figure.
 
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::figure::{figure, write_csv};
@@ -11,7 +12,8 @@ use super::types::{ConvergenceOptions, ConvergenceReport, ConvergenceRow, Family
 use crate::app::plot::fit_loglog_slope;
 use crate::app::repro::peers::{find_program, run_peer_with, PeerKind, PeerOptions, PeerResult};
 use anisomesh::error::{Error, Result};
-use anisomesh::levelset::shape_by_name;
+use anisomesh::geom::DVec2;
+use anisomesh::levelset::{shape_by_name, Shape};
 use anisomesh::mesh::{GridPattern, Mesh2};
 
 /// The sweep: `ε` values of the adapted families and cells per side of the uniform grids.
@@ -147,37 +149,9 @@ pub fn run(opts: &ConvergenceOptions) -> Result<ConvergenceReport> {
         }
     }
     for &n in &cells {
-        let t = Instant::now();
-        let mesh = Mesh2::rectangle(domain.0, domain.1, n, n, GridPattern::UnionJack)?;
-        let secs = t.elapsed().as_secs_f64();
-        let h = (domain.1.x - domain.0.x) / n as f64;
-        rows.push(row(
-            Family::Uniform,
-            n as f64,
-            h,
-            &mesh,
-            shape.as_ref(),
-            &corners,
-            secs,
-            true,
-        )?);
+        rows.push(uniform_row(n, domain, shape.as_ref(), &corners)?);
     }
-    let fits = [Family::Anisotropic, Family::Isotropic, Family::Uniform]
-        .into_iter()
-        .map(|f| {
-            let pts = |g: fn(&ConvergenceRow) -> f64| -> Vec<(f64, f64)> {
-                rows.iter()
-                    .filter(|r| r.family == f)
-                    .map(|r| (r.vertices as f64, g(r)))
-                    .collect()
-            };
-            FamilyFit {
-                family: f,
-                hausdorff_slope: fit_loglog_slope(&pts(|r| r.hausdorff)),
-                area_slope: fit_loglog_slope(&pts(|r| r.area_rel_error)),
-            }
-        })
-        .collect();
+    let fits = family_fits(&rows);
     let gain = anisotropy_gain(&rows);
     let peers = if opts.peers && name == "zalesak" {
         run_peers(&eps_list, opts)
@@ -194,12 +168,63 @@ pub fn run(opts: &ConvergenceOptions) -> Result<ConvergenceReport> {
         files: Vec::new(),
     };
     if let Some(dir) = &opts.out_dir {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-        let csv = dir.join(format!("convergence_{name}.csv"));
-        write_csv(&csv, &report)?;
-        let png = dir.join(format!("convergence_{name}.png"));
-        figure(&report)?.save_png(&png)?;
-        report.files = vec![csv, png];
+        report.files = write_files(dir, &name, &report)?;
     }
     Ok(report)
+}
+
+/// The uniform union-jack grid of `domain` with `n` cells per side, measured as a row
+/// (`seconds` is the grid construction time).
+fn uniform_row(
+    n: usize,
+    domain: (DVec2, DVec2),
+    shape: &dyn Shape,
+    corners: &[DVec2],
+) -> Result<ConvergenceRow> {
+    let t = Instant::now();
+    let mesh = Mesh2::rectangle(domain.0, domain.1, n, n, GridPattern::UnionJack)?;
+    let secs = t.elapsed().as_secs_f64();
+    let h = (domain.1.x - domain.0.x) / n as f64;
+    row(
+        Family::Uniform,
+        n as f64,
+        h,
+        &mesh,
+        shape,
+        corners,
+        secs,
+        true,
+    )
+}
+
+/// The least-squares log-log slopes of the Hausdorff and area errors against the vertex count,
+/// per family.
+fn family_fits(rows: &[ConvergenceRow]) -> Vec<FamilyFit> {
+    [Family::Anisotropic, Family::Isotropic, Family::Uniform]
+        .into_iter()
+        .map(|f| {
+            let pts = |g: fn(&ConvergenceRow) -> f64| -> Vec<(f64, f64)> {
+                rows.iter()
+                    .filter(|r| r.family == f)
+                    .map(|r| (r.vertices as f64, g(r)))
+                    .collect()
+            };
+            FamilyFit {
+                family: f,
+                hausdorff_slope: fit_loglog_slope(&pts(|r| r.hausdorff)),
+                area_slope: fit_loglog_slope(&pts(|r| r.area_rel_error)),
+            }
+        })
+        .collect()
+}
+
+/// Writes `convergence_<name>.csv` and `convergence_<name>.png` into `dir` (created if
+/// missing); returns their paths.
+fn write_files(dir: &Path, name: &str, report: &ConvergenceReport) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let csv = dir.join(format!("convergence_{name}.csv"));
+    write_csv(&csv, report)?;
+    let png = dir.join(format!("convergence_{name}.png"));
+    figure(report)?.save_png(&png)?;
+    Ok(vec![csv, png])
 }
