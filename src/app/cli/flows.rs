@@ -223,7 +223,7 @@ pub struct ConvergenceArgs {
 /// Interface error versus vertex count for anisotropic, isotropic-adapted and uniform meshes.
 pub fn convergence(a: ConvergenceArgs) -> Result<()> {
     if a.paper_claim {
-        use crate::app::repro::convergence_claim::{claim_table, paper_claim, CLAIM_SETTINGS};
+        use crate::app::repro::convergence::claim::{claim_table, paper_claim, CLAIM_SETTINGS};
         let (eps, settings) = if a.quick {
             (1e-2, &CLAIM_SETTINGS[..2])
         } else {
@@ -233,7 +233,7 @@ pub fn convergence(a: ConvergenceArgs) -> Result<()> {
         return Ok(());
     }
     if a.best_vs_best {
-        use crate::app::repro::convergence_fronts::{run, FrontGrid};
+        use crate::app::repro::convergence::fronts::{run, FrontGrid};
         let grid = if a.quick {
             FrontGrid::quick()
         } else {

@@ -3,9 +3,9 @@
 //! plain line charts ([`lines_png`]).
 //!
 //! Every figure is first rendered into an in-memory [`RgbImage`] (`*_rgb` functions, useful for
-//! tests and embedding) and then encoded as PNG into a temporary file beside the target, renamed
-//! into place when complete. Text uses DejaVu Sans, shipped in `assets/` and registered with
-//! plotters once, so no system font is needed.
+//! tests and embedding) and then encoded as PNG in memory and written atomically
+//! ([`anisomesh::io::atomic_write`]). Text uses DejaVu Sans, shipped in `assets/` and registered
+//! with plotters once, so no system font is needed.
 
 mod charts;
 pub mod colormap;
@@ -20,8 +20,11 @@ pub use mesh::{mesh_png, mesh_rgb, Corner, Inset, MeshPlot};
 pub use plotters::style::RGBColor;
 
 use anisomesh::error::{Error, Result};
+use anisomesh::io::atomic_write;
+use image::codecs::png::PngEncoder;
+use image::{ColorType, ImageEncoder};
 use plotters::prelude::*;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::OnceLock;
 
 /// The font family name under which the shipped font is registered.
@@ -85,21 +88,26 @@ impl RgbImage {
         set.len()
     }
 
+    /// Checks that the pixel buffer holds `3 width height` bytes.
+    fn check_buffer(&self) -> Result<()> {
+        let expected = 3 * self.width as usize * self.height as usize;
+        if self.pixels.len() == expected {
+            return Ok(());
+        }
+        Err(Error::InvalidInput(format!(
+            "image of {} x {} pixels holds {} bytes, not {expected}",
+            self.width,
+            self.height,
+            self.pixels.len()
+        )))
+    }
+
     /// The images side by side, top-aligned, on a white background as high as the highest.
     /// Errors: no image, an image whose pixel buffer does not hold `3 width height` bytes, or a
     /// result outside the size limits of [`RgbImage::new`].
     pub fn side_by_side(images: &[RgbImage]) -> Result<RgbImage> {
-        if let Some(p) = images
-            .iter()
-            .find(|p| p.pixels.len() != 3 * p.width as usize * p.height as usize)
-        {
-            return Err(Error::InvalidInput(format!(
-                "image of {} x {} pixels holds {} bytes, not {}",
-                p.width,
-                p.height,
-                p.pixels.len(),
-                3 * p.width as usize * p.height as usize
-            )));
+        for p in images {
+            p.check_buffer()?;
         }
         let width = images
             .iter()
@@ -120,33 +128,17 @@ impl RgbImage {
         Ok(img)
     }
 
-    /// Encodes the image as PNG into `path`: written to a temporary file beside it (so readers
-    /// never see a partial file) and renamed into place.
+    /// Encodes the image as PNG in memory and writes it to `path` atomically
+    /// ([`anisomesh::io::atomic_write`]: readers never see a partial file). Errors: a pixel
+    /// buffer that does not hold `3 width height` bytes, an encoder or an I/O failure.
     pub fn save_png(&self, path: &Path) -> Result<()> {
-        let tmp = temp_path(path);
-        let result = (|| {
-            let mut backend = BitMapBackend::new(&tmp, (self.width, self.height));
-            backend
-                .blit_bitmap((0, 0), (self.width, self.height), &self.pixels)
-                .map_err(|e| drawing_error(path, e))?;
-            backend.present().map_err(|e| drawing_error(path, e))?;
-            drop(backend);
-            std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
-        })();
-        if result.is_err() {
-            let _ = std::fs::remove_file(&tmp);
-        }
-        result
+        self.check_buffer()?;
+        let mut png = Vec::new();
+        PngEncoder::new(&mut png)
+            .write_image(&self.pixels, self.width, self.height, ColorType::Rgb8)
+            .map_err(|e| drawing_error(path, e))?;
+        atomic_write(path, |w| w.write_all(&png))
     }
-}
-
-/// `dir/.name.<pid>.tmp.png`: the extension must stay `png` for the encoder.
-fn temp_path(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "plot".into());
-    path.with_file_name(format!(".{name}.{}.tmp.png", std::process::id()))
 }
 
 fn drawing_error(path: &Path, e: impl std::fmt::Display) -> Error {

@@ -2,9 +2,6 @@
 
 pub mod adapt_run;
 pub mod convergence;
-pub mod convergence_claim;
-pub mod convergence_figure;
-pub mod convergence_fronts;
 pub mod couette;
 pub mod couette_sweep;
 pub mod peers;

@@ -1,5 +1,5 @@
 //! Anisotropy at equal interface error, best mesh against best mesh
-//! ([`crate::app::repro::convergence_fronts`]): the Pareto front of `(vertices, error)` points,
+//! ([`crate::app::repro::convergence::fronts`]): the Pareto front of `(vertices, error)` points,
 //! and on the circle of radius 0.5 the fronts of the anisotropic eq. (6) meshes (free `ε`, normal
 //! size) and of the isotropic graded meshes (free size). The distance is linear across its zero
 //! level, so the best anisotropic element on a curved interface is about as long as it is wide:
@@ -8,8 +8,8 @@
 //! at equal `h_min` (004 §5.1). What does pay is a larger normal size than the sweep's
 //! `0.1 √ε`: about half the vertices for the same error.
 
-use crate::app::repro::convergence::Family;
-use crate::app::repro::convergence_fronts::{pareto_front, run, FrontGrid};
+use crate::app::repro::convergence::fronts::{pareto_front, run, FrontGrid};
+use crate::app::repro::convergence::types::Family;
 
 /// Dominated points (more vertices and no smaller error), duplicates and invalid points leave
 /// the front; what stays is sorted by vertices with strictly decreasing errors.

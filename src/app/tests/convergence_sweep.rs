@@ -5,10 +5,12 @@
 //! pays" analysis: fitted power-law ratios, the kink of the Zalesak distance seen at the scale
 //! `h_min`, and where the Zalesak interface error is attained (at the slot corners).
 
-use crate::app::repro::convergence::{
-    anisotropy_gain, corners_of, fitted_gain, hausdorff_split, metric_for, run, vertices_at_error,
-    ConvergenceOptions, ConvergenceRow, Family, CORNER_RADIUS,
+use crate::app::repro::convergence::gain::{anisotropy_gain, fitted_gain, vertices_at_error};
+use crate::app::repro::convergence::measure::{
+    corners_of, hausdorff_split, metric_for, CORNER_RADIUS,
 };
+use crate::app::repro::convergence::types::{ConvergenceRow, Family};
+use crate::app::repro::convergence::{run, ConvergenceOptions};
 use anisomesh::adapt::sources::derivatives_at_scale;
 use anisomesh::adapt::{adapt_to_shape, ShapeAdaptOptions};
 use anisomesh::levelset::{extract_zero_level, interface_distance, shape_by_name};
@@ -178,7 +180,7 @@ fn zalesak_hausdorff_is_attained_at_the_corners() {
 /// setting it does not: about 3.5 at `ε = 1e-2`, 3.3 at `4e-2`.)
 #[test]
 fn paper_claim_isotropic_graded_mesh_at_equal_hmin() {
-    use crate::app::repro::convergence_claim::{claim_table, paper_claim, ClaimSetting};
+    use crate::app::repro::convergence::claim::{claim_table, paper_claim, ClaimSetting};
     let base = ClaimSetting {
         eps: None,
         band_hmin: Some(4.0),

@@ -10,7 +10,7 @@
 //!   vanishing-with-h drift, not an O(1) one),
 //! - k = 2 drifts at least 10 times less than k = 1 on the same mesh.
 
-use crate::app::repro::reinit::sphere_drift_signed;
+use crate::app::repro::reinit::drift::sphere_drift_signed;
 
 /// Mean change of the signed relative volume error per redistancing over `reps` repetitions.
 fn rate(e: &[f64]) -> f64 {

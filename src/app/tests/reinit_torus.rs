@@ -1,7 +1,7 @@
 //! PPR redistancing on tetrahedra: 003 §8 Example 1 (torus, alpha = 1 and 10) on levels 3..=5 (the
 //! deeper levels are in `bench::reinit::run`). Values are compared with 003 Table 8.1.
 
-use crate::app::repro::reinit::torus_case;
+use crate::app::repro::reinit::torus::torus_case;
 
 /// 003 Table 8.1, levels 3, 4, 5: (e_inf, e_grad).
 const PAPER_K1: [(f64, f64); 3] = [(1.21e-2, 2.50e-1), (3.01e-3, 1.53e-1), (7.54e-4, 8.32e-2)];

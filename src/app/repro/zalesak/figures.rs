@@ -9,7 +9,8 @@
 //!   interfaces on the anisotropic, isotropic and uniform meshes, and the relative area and
 //!   perimeter errors along the revolution.
 
-use super::{Snapshot, ZalesakReport, EXACT_AREA, EXACT_PERIMETER};
+use super::exact::{EXACT_AREA, EXACT_PERIMETER};
+use super::types::{Snapshot, ZalesakReport, ZalesakSample};
 use crate::app::plot::{
     lines_rgb, mesh_rgb, Corner, Inset, LinesPlot, MeshPlot, RGBColor, RgbImage, Series,
     SeriesStyle,
@@ -236,7 +237,7 @@ fn compare(dir: &Path, r: &ZalesakReport) -> Result<()> {
         panels.push(mesh_rgb(&last.mesh, &plot)?);
     }
     grid(&panels, panels.len())?.save_png(&dir.join("zalesak_compare.png"))?;
-    let chart = |what: &str, exact: f64, get: &dyn Fn(&super::ZalesakSample) -> f64| {
+    let chart = |what: &str, exact: f64, get: &dyn Fn(&ZalesakSample) -> f64| {
         lines_rgb(&LinesPlot {
             title: format!("relative {what} error along the revolution"),
             x_label: "t".into(),

@@ -19,9 +19,9 @@
 //!
 //! All numbers are relative to the exact area / perimeter.
 
-use super::{exact_level_set, ZalesakOptions, EXACT_AREA, EXACT_PERIMETER};
+use super::exact::{exact_level_set, EXACT_AREA, EXACT_PERIMETER};
 use anisomesh::advect::galerkin::{limit_to_feet, pull_back, Form};
-use anisomesh::advect::{self, foot, FieldEvaluator, Rotation};
+use anisomesh::advect::{self, foot, AdvectOptions, FieldEvaluator, Rotation};
 use anisomesh::error::Result;
 use anisomesh::geom::DVec2;
 use anisomesh::levelset::shapes::Zalesak;
@@ -57,18 +57,16 @@ fn measures(mesh: &Mesh2, u: &[f64]) -> Result<(f64, f64)> {
 
 impl ErrorSources {
     /// Adds the one-step foot and transfer errors of the period `[t0, t1]` from `old` to `new`.
-    #[allow(clippy::too_many_arguments)]
+    /// `a` is the advection step of the run.
     pub(super) fn period(
         &mut self,
         shape: &Zalesak,
         old: &Mesh2,
         new: &Mesh2,
-        _u: &[f64],
         t0: f64,
         t1: f64,
-        opts: &ZalesakOptions,
+        a: &AdvectOptions,
     ) -> Result<()> {
-        let a = &opts.advect;
         let ue0 = exact_level_set(shape, old, t0);
         let ue1 = exact_level_set(shape, new, t1);
         let (s, c) = (t1 - t0).sin_cos();

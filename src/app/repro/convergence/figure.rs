@@ -1,17 +1,17 @@
-//! The figure and CSV of the error-versus-vertex-count sweep ([`super::convergence`], issue 3
-//! item 7): anisomesh's three families, the peers measured in the same run, and the points
-//! reported in issue 3; a third panel shows "anisotropy pays", the ratio of isotropic to
+//! The figure and CSV of the error-versus-vertex-count sweep ([`super::sweep`]): anisomesh's
+//! three families, the peers measured in the same run, and the reported peer points
+//! ([`REPORTED`]); a third panel shows "anisotropy pays", the ratio of isotropic to
 //! anisotropic vertex counts at equal Hausdorff error, beside the paper's claim of about 10
 //! (004 §5.1).
 
 use std::path::Path;
 
-use super::convergence::{ConvergenceReport, ConvergenceRow, Family};
-use super::peers::PeerResult;
+use super::types::{ConvergenceReport, ConvergenceRow, Family};
 use crate::app::plot::{loglog_rgb, LogLogPlot, RgbImage, Series, SeriesStyle};
+use crate::app::repro::peers::PeerResult;
 use anisomesh::error::Result;
 
-/// A Zalesak point quoted in issue 3: vertices, Hausdorff, relative area and perimeter errors
+/// A reported Zalesak point of a peer or reference mesh: vertices, Hausdorff, relative area and perimeter errors
 /// (NaN where not reported).
 #[derive(Debug, Clone, Copy)]
 pub struct ReportedPoint {
@@ -21,7 +21,7 @@ pub struct ReportedPoint {
     pub hausdorff: f64,
     pub area_rel_error: f64,
     pub perimeter_rel_error: f64,
-    /// The errors are the target level the issue refers to ("errors of this size"), not
+    /// The errors are the target level the report refers to ("errors of this size"), not
     /// measured values.
     pub at_target: bool,
 }
@@ -44,7 +44,7 @@ const fn reported(
     }
 }
 
-/// The Zalesak points quoted in issue 3: BAMG (FreeFem++ `adaptmesh`), mmg2d after six
+/// The reported Zalesak points: BAMG (FreeFem++ `adaptmesh`), mmg2d after six
 /// fixed-point passes, and "isotropic adaptation needs 26,000–54,000 vertices and a uniform mesh
 /// 641,601 vertices for errors of this size" — these three carry no measured error and are
 /// placed at the target errors (Hausdorff 5e-4, area 5e-5). The full sweep measures that very

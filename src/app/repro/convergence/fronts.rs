@@ -2,7 +2,7 @@
 //! over their free parameters, the Pareto front of each (fewest vertices for a given error), and
 //! the isotropic / anisotropic vertex ratio of the fronts at equal error.
 //!
-//! The convergence sweep ([`super::convergence`]) ties the normal size of eq. (6) to the
+//! The convergence sweep ([`super::sweep`]) ties the normal size of eq. (6) to the
 //! accuracy (`h_min = 0.1 √ε`, so that `ε = 1e-4` is the paper's `h_min = 0.001`) and compares it
 //! with the isotropic mesh of size `h_min`. Neither is the cheapest mesh of its kind for a given
 //! interface error. Here each family is given the parameters that matter, and only its best
@@ -17,7 +17,7 @@
 //! Everything else is the `anisomesh adapt` default for both: growth rate 1 outside the band,
 //! metric gradation 2, `h_max = 0.2`, exact corner features, adaptation rounds until the vertex
 //! count settles with at least 95% of the edges in range. Only runs whose rounds settled enter
-//! the fronts. Every mesh is measured as in the sweep ([`super::convergence::measure`]: the zero
+//! the fronts. Every mesh is measured as in the sweep ([`super::measure::measure`]: the zero
 //! level of the nodal interpolant of the exact distance against the exact shape).
 //!
 //! Why the ratio is small (what this benchmark measures): the signed distance is linear across
@@ -25,17 +25,16 @@
 //! the interface (004 Corollary 1: `l² κ`, with the normal size `h` only in `1 − hκ − h²κ²`). On a
 //! curved interface the best anisotropic element is then about as long as it is wide, and the
 //! two fronts meet. The paper's ten-fold gain (004 §5.1) compares the two meshes at the same
-//! smallest size instead ([`super::convergence_claim`]).
+//! smallest size instead ([`super::claim`]).
 
 use std::path::PathBuf;
 
 use serde::Serialize;
 
-use super::convergence::{
-    adapted_row, corners_of, domain_of, equal_error_ratios, median_ratio, ConvergenceRow, Family,
-    GainPoint,
-};
-use super::convergence_figure::ratio_lines;
+use super::figure::ratio_lines;
+use super::gain::{equal_error_ratios, median_ratio};
+use super::measure::{adapted_row, corners_of, domain_of};
+use super::types::{ConvergenceRow, Family, GainPoint};
 use crate::app::plot::{loglog_rgb, LogLogPlot, RgbImage, Series, SeriesStyle};
 use anisomesh::adapt::LevelSetMetric;
 use anisomesh::error::{Error, Result};

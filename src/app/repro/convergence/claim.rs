@@ -4,7 +4,7 @@
 //! vertices" — a comparison at the same smallest size, not at equal interface error.
 //!
 //! The isotropic graded mesh of a setting is the isotropic family of the convergence sweep
-//! ([`super::convergence`]): at every point the metric is `λ_max I`, the smallest size of the
+//! ([`super::sweep`]): at every point the metric is `λ_max I`, the smallest size of the
 //! anisotropic eq. (6) metric in every direction (`h_min` across the interface), with the same
 //! band, the same growth rate of the sizes outside it and the same metric gradation
 //! ([`anisomesh::metric::gradate`]) as the anisotropic mesh it is compared with. Both meshes get the
@@ -12,7 +12,8 @@
 
 use serde::Serialize;
 
-use super::convergence::{adapted_row, corners_of, domain_of, metric_with, ConvergenceRow, Family};
+use super::measure::{adapted_row, corners_of, domain_of, metric_with};
+use super::types::{ConvergenceRow, Family};
 use anisomesh::adapt::ShapeAdaptOptions;
 use anisomesh::error::Result;
 use anisomesh::levelset::shape_by_name;
@@ -122,7 +123,7 @@ pub struct ClaimRow {
 /// Adapts the anisotropic eq. (6) mesh and the isotropic graded mesh of `shape` at `ε` (with
 /// `h_min = 0.1 √ε`, [`metric_with`]; `ε = 1e-4` is the paper's `h_min = 0.001`) for every
 /// setting and measures both (interface error of the nodal interpolant of the exact distance,
-/// [`super::convergence::measure`]).
+/// [`super::measure::measure`]).
 ///
 /// Errors: an unknown shape, invalid settings, adaptation failures.
 pub fn paper_claim(shape: &str, eps: f64, settings: &[ClaimSetting]) -> Result<Vec<ClaimRow>> {
