@@ -31,7 +31,7 @@ pub struct ShapeAdaptOptions {
     /// converged, and [`ShapeAdaptOptions::min_in_range`] holds).
     pub tol: f64,
     /// Stop only when at least this share of the edges has metric length in `[1/√2, √2]` in the
-    /// metric evaluated at the mesh's own vertices (default 0.95, issue 3's quality target).
+    /// metric evaluated at the mesh's own vertices (default 0.95).
     /// Guards the vertex-count test against a round whose count happens to match the previous
     /// one while the mesh still follows a metric seen on a coarser mesh (with corner vertices, a
     /// first round refines the corners before the interface is seen; its successor measured 72%

@@ -14,7 +14,7 @@ fn gradation_during_adaptation_removes_the_jumps_of_a_coarse_background_metric()
     use crate::app::repro::speed::{read_mesh_and_metric, write_speed_case};
     use anisomesh::adapt::adapt;
     use anisomesh::adapt::metric_file_options;
-    // The speed case of issue 3 at eps 3e-4: the eq. (6) Zalesak metric given on a 100 x 100
+    // The speed case at eps 3e-4: the eq. (6) Zalesak metric given on a 100 x 100
     // grid of [-2, 2]^2, whose normal size goes from 3e-4 to 0.2 within one grid cell.
     let dir = std::env::temp_dir().join(format!("anisomesh_hgrad_{}", std::process::id()));
     let (bg, sol) = write_speed_case(&dir, 100, 3e-4).unwrap();

@@ -4,7 +4,7 @@
 //! full configuration (`anisomesh zalesak`) is measured in the README.
 //!
 //! Asserted: the relative area and perimeter errors after one revolution, the vertex counts,
-//! the foot error of the RK4 scheme, and the output files (`zalesak.json` with the issue's
+//! the foot error of the RK4 scheme, and the output files (`zalesak.json` with the benchmark.s
 //! fields, `zalesak.csv` with one row per period, the figures).
 
 use crate::app::repro::zalesak::{run, ZalesakMesh, ZalesakOptions};

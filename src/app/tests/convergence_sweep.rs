@@ -1,4 +1,4 @@
-//! Measured properties of a tiny convergence sweep on the circle of radius 0.5 (issue 3 item 7):
+//! Measured properties of a tiny convergence sweep on the circle of radius 0.5 :
 //! the uniform-grid Hausdorff error of the nodal interpolant of the distance decreases like
 //! `h² ~ 1/vertices` (log-log slope -1 ± 0.25), and at every `ε` the anisotropic mesh of
 //! 004 eq. (6) has fewer vertices than its isotropic version. Then the pieces of the "anisotropy

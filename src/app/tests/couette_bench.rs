@@ -1,4 +1,4 @@
-//! The Couette benchmark of 004 §5.1 through `bench::couette::run`: the targets on the
+//! The Couette benchmark of 004 §5.1 through `bench::couette::run`: the benchmark's targets on the
 //! default adapted mesh, the body-fitted reference, and thread-count independence.
 
 use crate::app::repro::couette::{run, CouetteOptions, CouetteReport};

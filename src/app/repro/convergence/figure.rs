@@ -117,9 +117,9 @@ pub fn write_csv(path: &Path, report: &ConvergenceReport) -> Result<()> {
     if report.shape == "zalesak" {
         for p in REPORTED {
             let what = if p.at_target {
-                "reported issue 3 at the target errors"
+                "quoted, at the target errors"
             } else {
-                "reported issue 3"
+                "quoted"
             };
             lines.push(format!(
                 "{} ({what}),,,{},,{},,,{},{},,",
