@@ -1,6 +1,7 @@
 //! The benchmark-flow commands: `zalesak` and `reinit` (thin wrappers over `crate::app::repro`).
 
 use super::metric_args::MetricArgs;
+use super::progress::Spinner;
 use crate::app::repro::{convergence, couette, couette_sweep, reinit, zalesak};
 use anisomesh::Result;
 use clap::Args;
@@ -125,7 +126,10 @@ pub fn zalesak(a: ZalesakArgs) -> Result<()> {
         out_dir: Some(a.output.clone()),
         ..d
     };
-    let r = zalesak::run(&opts)?;
+    let spinner = Spinner::start("rotating the slotted disk");
+    let r = zalesak::run(&opts);
+    spinner.finish();
+    let r = r?;
     print!("{}", r.summary());
     println!(
         "fixed-point iterations per period: {:?}",
@@ -229,7 +233,10 @@ pub fn convergence(a: ConvergenceArgs) -> Result<()> {
         } else {
             (1e-4, &CLAIM_SETTINGS[..])
         };
-        print!("{}", claim_table(&paper_claim(&a.shape, eps, settings)?));
+        let spinner = Spinner::start("adapting both mesh families");
+        let rows = paper_claim(&a.shape, eps, settings);
+        spinner.finish();
+        print!("{}", claim_table(&rows?));
         return Ok(());
     }
     if a.best_vs_best {
@@ -239,7 +246,10 @@ pub fn convergence(a: ConvergenceArgs) -> Result<()> {
         } else {
             FrontGrid::full()
         };
-        let r = run(&a.shape, &grid, Some(&a.output))?;
+        let spinner = Spinner::start("sweeping both mesh families");
+        let r = run(&a.shape, &grid, Some(&a.output));
+        spinner.finish();
+        let r = r?;
         print!("{}", r.table());
         for f in &r.files {
             println!("wrote {}", f.display());
@@ -318,7 +328,10 @@ pub fn couette(a: CouetteArgs) -> Result<()> {
         out_dir: Some(a.output.clone()),
         ..base
     };
-    let r = couette::run(&opts)?;
+    let spinner = Spinner::start("solving the two-phase flow");
+    let r = couette::run(&opts);
+    spinner.finish();
+    let r = r?;
     println!(
         "Couette ({} mesh): omega {:.7} (exact -1, |omega+1| {:.1e}), rigidity {:.1e}, {} vertices, {} Uzawa iterations, {:.2} s",
         r.mesh, r.omega, r.omega_error, r.rigidity, r.vertices, r.uzawa_iterations, r.seconds
@@ -339,7 +352,10 @@ fn couette_sweep_tables(quick: bool, out: &std::path::Path) -> Result<()> {
             (-4..=4).map(|k| k as f64 * 1e-4).collect(),
         )
     };
-    let rows = couette_sweep::sweep(&scales, &hs)?;
+    let spinner = Spinner::start("solving on the mesh sequence");
+    let rows = couette_sweep::sweep(&scales, &hs);
+    spinner.finish();
+    let rows = rows?;
     print!("{}", couette_sweep::sweep_table(&rows));
     std::fs::create_dir_all(out).map_err(|e| anisomesh::Error::io(out, e))?;
     let png = out.join("couette_convergence.png");
