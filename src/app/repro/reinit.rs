@@ -26,7 +26,7 @@ use anisomesh::error::{Error, Result};
 use anisomesh::fem::lagrange::{self, P2Dofs};
 use anisomesh::geom::{DVec2, DVec3};
 use anisomesh::levelset::redistance::{
-    redistance_geometric_3d, redistance_ppr, redistance_ppr_3d, PprOptions, PprReport,
+    redistance_geometric_cells, redistance_ppr, redistance_ppr_cells, PprOptions, PprReport,
 };
 use anisomesh::mesh::{GridPattern, Mesh2};
 use anisomesh::mesh3::Mesh3;
@@ -199,7 +199,7 @@ pub fn torus_case_on(m: &Mesh3, level: u32, k: usize, alpha: f64) -> Result<Case
         .iter()
         .map(|p| torus_distance(*p) * q_alpha(alpha, p.x, p.y, p.length()))
         .collect();
-    let out = redistance_ppr_3d(&m.points, &m.tets, &phi, &table_opts(k))?;
+    let out = redistance_ppr_cells(&m.points, &m.tets, &phi, &table_opts(k))?;
     let e_inf = x
         .iter()
         .enumerate()
@@ -409,7 +409,7 @@ pub fn sphere_drift_signed(
         ..PprOptions::default()
     };
     drift_with(level, k, reps, bar, |m, f| {
-        Ok(redistance_ppr_3d(&m.points, &m.tets, f, &opts)?.values)
+        Ok(redistance_ppr_cells(&m.points, &m.tets, f, &opts)?.values)
     })
 }
 
@@ -422,7 +422,7 @@ pub fn sphere_drift_geometric_signed(
     bar: Option<&ProgressBar>,
 ) -> Result<Vec<f64>> {
     drift_with(level, 1, reps, bar, |m, f| {
-        redistance_geometric_3d(&m.points, &m.tets, f)
+        redistance_geometric_cells(&m.points, &m.tets, f)
     })
 }
 
