@@ -22,7 +22,9 @@ use std::collections::HashMap;
 /// (the negative side is on the left of every segment).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Polyline {
+    /// The points in order (the first is not repeated at the end of a closed curve).
     pub points: Vec<DVec2>,
+    /// Whether the last point joins the first.
     pub closed: bool,
 }
 

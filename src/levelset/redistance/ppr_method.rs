@@ -87,9 +87,11 @@ pub struct PprReport {
 /// [`crate::fem::lagrange::P2Dofs`]), the band flags, and the report.
 #[derive(Debug, Clone)]
 pub struct PprOutput {
+    /// The redistanced values, one per node.
     pub values: Vec<f64>,
     /// `band[n]` = node `n` belongs to a cut cell (its value comes from the oblique projection).
     pub band: Vec<bool>,
+    /// Statistics of the run.
     pub report: PprReport,
 }
 

@@ -112,9 +112,13 @@ impl<P: ShapePoint, S: Shape<P> + ?Sized> Shape<P> for Box<S> {
 /// pieces (Green's theorem), not tabulated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Zalesak {
+    /// Centre of the disk.
     pub centre: DVec2,
+    /// Radius of the disk.
     pub radius: f64,
+    /// Half the width of the slot.
     pub half_width: f64,
+    /// Height `y` of the slot's top.
     pub slot_top: f64,
     curve: ArcPolygon,
 }
@@ -260,9 +264,13 @@ impl Shape for Zalesak {
 /// trapezoidal rule (spectrally accurate).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Flower {
+    /// Centre of the polar coordinates.
     pub centre: DVec2,
+    /// Mean radius `r0`.
     pub r0: f64,
+    /// Amplitude `a` of the petals.
     pub a: f64,
+    /// Number of petals `k`.
     pub k: u32,
 }
 
