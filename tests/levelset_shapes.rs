@@ -285,3 +285,52 @@ fn rotated_shape_is_the_rigidly_moved_shape() {
     assert!(Zalesak::new(DVec2::ZERO, 0.5, 0.6, 0.1).is_err());
     assert!(Zalesak::new(DVec2::ZERO, 0.5, 0.06, 0.9).is_err());
 }
+
+/// The ball in space and the torus: exact distances on known points, exact gradients against
+/// differences, measures in closed form, boundary samples on the zero level.
+#[test]
+fn sphere_and_torus() {
+    use anisomesh::levelset::shapes::{Sphere, Torus};
+    use anisomesh::DVec3;
+    let s = Sphere {
+        centre: DVec3::new(0.1, 0.2, -0.3),
+        radius: 0.5,
+    };
+    assert!((s.distance(DVec3::new(0.1, 0.2, 0.7)) - 0.5).abs() < 1e-15);
+    assert!((s.distance(s.centre) + 0.5).abs() < 1e-15);
+    let t = Torus::PAPER;
+    assert!((t.distance(DVec3::new(0.4, 0.0, 0.0)) + 0.2).abs() < 1e-15);
+    assert!((t.distance(DVec3::new(0.0, 0.0, 0.3)) - (0.25f64.sqrt() - 0.2)).abs() < 1e-15);
+    assert!((t.exact_area().unwrap() - 2.0 * PI * PI * 0.4 * 0.04).abs() < 1e-15);
+    assert!((t.exact_perimeter().unwrap() - 4.0 * PI * PI * 0.08).abs() < 1e-15);
+    let shapes: [&dyn Shape<DVec3>; 2] = [&s, &t];
+    for shape in shapes {
+        for q in shape.boundary_samples(200).unwrap() {
+            assert!(shape.distance(q).abs() < 1e-14, "{} at {q}", shape.name());
+        }
+        for p in [DVec3::new(0.3, -0.1, 0.2), DVec3::new(-0.7, 0.4, -0.1)] {
+            let g = shape.gradient(p);
+            let h = 1e-6;
+            let fd = DVec3::new(
+                shape.distance(p + DVec3::X * h) - shape.distance(p - DVec3::X * h),
+                shape.distance(p + DVec3::Y * h) - shape.distance(p - DVec3::Y * h),
+                shape.distance(p + DVec3::Z * h) - shape.distance(p - DVec3::Z * h),
+            ) / (2.0 * h);
+            assert!((g - fd).length() < 1e-8, "{}: {g} vs {fd}", shape.name());
+            assert!((g.length() - 1.0).abs() < 1e-14);
+        }
+    }
+    // The sphere's Hessian is (I - n nᵀ)/r; the torus falls back on differences.
+    let p = DVec3::new(0.6, 0.2, -0.3);
+    let hs = s.hessian(p);
+    assert!(
+        (hs.xx - 0.0).abs() < 1e-15 && (hs.yy - 2.0).abs() < 1e-15 && (hs.zz - 2.0).abs() < 1e-15
+    );
+    let ht = t.hessian(DVec3::new(0.65, 0.0, 0.0));
+    // On the x axis outside the tube: curvature 1/ρ along y (the circle about z), 1/w along z.
+    assert!(
+        (ht.yy - 1.0 / 0.65).abs() < 1e-6 && (ht.zz - 1.0 / 0.25).abs() < 1e-6,
+        "{ht:?}"
+    );
+    assert!(s.name().starts_with("sphere") && t.name().starts_with("torus"));
+}

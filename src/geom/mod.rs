@@ -57,6 +57,65 @@ pub fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> (f64, f64) {
     ((a + t * ab - p).length(), t)
 }
 
+/// Distance from `p` to the triangle `(a, b, c)` (possibly degenerate): the closest point is
+/// found by the Voronoi regions of the vertices, edges and face (Ericson, *Real-Time Collision
+/// Detection*, §5.1.5).
+pub fn point_triangle_distance(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let ab = b - a;
+    let ac = c - a;
+    let ap = p - a;
+    let d1 = ab.dot(ap);
+    let d2 = ac.dot(ap);
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return ap.length();
+    }
+    let bp = p - b;
+    let d3 = ab.dot(bp);
+    let d4 = ac.dot(bp);
+    if d3 >= 0.0 && d4 <= d3 {
+        return bp.length();
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0 {
+        let v = d1 / (d1 - d3);
+        return (p - (a + v * ab)).length();
+    }
+    let cp = p - c;
+    let d5 = ab.dot(cp);
+    let d6 = ac.dot(cp);
+    if d6 >= 0.0 && d5 <= d6 {
+        return cp.length();
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0 {
+        let w = d2 / (d2 - d6);
+        return (p - (a + w * ac)).length();
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (p - (b + w * (c - b))).length();
+    }
+    let denom = va + vb + vc;
+    if denom.abs() <= f64::MIN_POSITIVE {
+        // Fully degenerate (collinear) triangle: nearest of the three edges.
+        let seg = |x: DVec3, y: DVec3| {
+            let d = y - x;
+            let l2 = d.length_squared();
+            let t = if l2 > 0.0 {
+                ((p - x).dot(d) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (x + t * d - p).length()
+        };
+        return seg(a, b).min(seg(b, c)).min(seg(a, c));
+    }
+    let v = vb / denom;
+    let w = vc / denom;
+    (p - (a + ab * v + ac * w)).length()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

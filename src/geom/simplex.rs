@@ -1,10 +1,12 @@
 //! Per-simplex kernels, generic over the dimension: edge vectors, signed volume, barycentric
-//! coordinates, the constant gradients of the barycentric functions (P1 gradients), the diameter.
+//! coordinates, the constant gradients of the barycentric functions (P1 gradients), the diameter,
+//! and the measure of a facet and the distance to it.
 //!
 //! A simplex in dimension `D` is an array `[P; N]` of `N = D + 1` corner points of a type `P`
 //! implementing [`Point<D>`] (`glam::DVec2` for triangles, `glam::DVec3` for tetrahedra). The
 //! few formulas that differ between dimensions (the determinant of the edge matrix through
-//! `perp_dot` or the triple product) are the trait's methods; the rest is written once here.
+//! `perp_dot` or the triple product, the measure of and distance to a facet) are the trait's
+//! methods; the rest is written once here.
 //! Local edges are numbered as [`TRI_EDGES`] and [`TET_EDGES`].
 
 use std::fmt::Debug;
@@ -90,6 +92,12 @@ pub trait Point<const D: usize>:
     /// Gradients of the barycentric coordinates of the simplex `p` into `out[..D + 1]`
     /// (non-finite for a degenerate simplex).
     fn bary_grads_into(p: &[Self], out: &mut [Self]);
+    /// The `(D - 1)`-measure of the facet `f` (`D` corners): the length of a segment in 2D, the
+    /// area of a triangle in 3D.
+    fn facet_measure(f: &[Self]) -> f64;
+    /// Euclidean distance from `x` to the facet `f` (`D` corners, possibly degenerate): a segment
+    /// in 2D, a triangle in 3D.
+    fn facet_distance(x: Self, f: &[Self]) -> f64;
 }
 
 impl Point<2> for DVec2 {
@@ -142,6 +150,14 @@ impl Point<2> for DVec2 {
         out[0] = g(p[1], p[2]);
         out[1] = g(p[2], p[0]);
         out[2] = g(p[0], p[1]);
+    }
+    #[inline]
+    fn facet_measure(f: &[Self]) -> f64 {
+        (f[1] - f[0]).length()
+    }
+    #[inline]
+    fn facet_distance(x: Self, f: &[Self]) -> f64 {
+        super::point_segment_distance(x, f[0], f[1]).0
     }
 }
 
@@ -204,6 +220,26 @@ impl Point<3> for DVec3 {
         let g3 = e1.cross(e2) / det;
         out[..4].copy_from_slice(&[-(g1 + g2 + g3), g1, g2, g3]);
     }
+    #[inline]
+    fn facet_measure(f: &[Self]) -> f64 {
+        0.5 * (f[1] - f[0]).cross(f[2] - f[0]).length()
+    }
+    #[inline]
+    fn facet_distance(x: Self, f: &[Self]) -> f64 {
+        super::point_triangle_distance(x, f[0], f[1], f[2])
+    }
+}
+
+/// The `(D - 1)`-measure of the facet `f` ([`Point::facet_measure`]).
+#[inline]
+pub fn facet_measure<const D: usize, P: Point<D>>(f: &[P; D]) -> f64 {
+    P::facet_measure(f)
+}
+
+/// Distance from `x` to the facet `f` ([`Point::facet_distance`]).
+#[inline]
+pub fn facet_distance<const D: usize, P: Point<D>>(x: P, f: &[P; D]) -> f64 {
+    P::facet_distance(x, f)
 }
 
 /// Compile-time check that a simplex of `N` points lives in dimension `D = N - 1`.

@@ -8,6 +8,7 @@
 //! crossing point at the vertex itself, and the rule is the same for every triangle sharing it, so
 //! segments always chain through shared edges.
 
+use super::measure;
 use super::shapes::Shape;
 use crate::error::{Error, Result};
 use crate::geom::{point_segment_distance, DVec2};
@@ -21,7 +22,9 @@ use std::collections::HashMap;
 /// (the negative side is on the left of every segment).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Polyline {
+    /// The points in order (the first is not repeated at the end of a closed curve).
     pub points: Vec<DVec2>,
+    /// Whether the last point joins the first.
     pub closed: bool,
 }
 
@@ -169,49 +172,28 @@ pub fn extract_zero_level(mesh: &Mesh2, u: &[f64]) -> Result<Vec<Polyline>> {
     Ok(out)
 }
 
-/// Exact area of `{u_h < 0}` for the P1 interpolant `u_h`: each triangle is clipped by its linear
-/// function (with one vertex of one sign and values `a`, `b`, `c`, the corner at `a` has the
-/// fraction `a² / ((a - b)(a - c))` of the area). Works when the interface meets the mesh
-/// boundary. Errors as [`extract_zero_level`], except that an empty level set is not an error.
+/// Exact area of `{u_h < 0}` for the P1 interpolant `u_h` on the live triangles of `mesh`: each
+/// triangle is clipped by its linear function ([`super::measure`]: with one vertex of one sign and
+/// values `a`, `b`, `c`, the corner at `a` has the fraction `a² / ((a - b)(a - c))` of the area).
+/// Works when the interface meets the mesh boundary. Errors as [`extract_zero_level`], except
+/// that an empty level set is not an error.
 pub fn enclosed_area(mesh: &Mesh2, u: &[f64]) -> Result<f64> {
     check_p1_field(mesh.n_points(), u, "level set")?;
-    let mut total = 0.0;
-    for t in mesh.live_tris() {
-        let vals = mesh.tris[t].map(|v| u[v as usize]);
-        let n_neg = vals.iter().filter(|&&v| v < 0.0).count();
-        let area = mesh.tri_area(t);
-        let frac = match n_neg {
-            0 => 0.0,
-            3 => 1.0,
-            _ => {
-                // The odd vertex (the one alone on its side).
-                let lone_neg = n_neg == 1;
-                let k = (0..3).find(|&i| (vals[i] < 0.0) == lone_neg).unwrap_or(0);
-                let a = vals[k];
-                let (b, c) = (vals[next(k)], vals[next(next(k))]);
-                let corner = a * a / ((a - b) * (a - c));
-                if lone_neg {
-                    corner
-                } else {
-                    1.0 - corner
-                }
-            }
-        };
-        total += frac * area;
-    }
-    Ok(total)
+    Ok(measure::enclosed_sum(
+        &mesh.points,
+        mesh.live_tris().map(|t| mesh.tris[t]),
+        u,
+    ))
 }
 
-/// Total length of the zero level of the P1 field `u` (sum of the segment lengths over cut
-/// triangles; zero for an empty level set). Errors on a wrong length or NaN values.
+/// Total length of the zero level of the P1 field `u` on the live triangles of `mesh` (sum of the
+/// segment lengths over cut triangles, [`super::measure`]; zero for an empty level set). Errors
+/// on a wrong length or NaN values.
 pub fn interface_length(mesh: &Mesh2, u: &[f64]) -> Result<f64> {
     check_p1_field(mesh.n_points(), u, "level set")?;
     Ok(mesh
         .live_tris()
-        .filter_map(|t| {
-            let (exit, entry) = cut_edges(mesh, u, t)?;
-            Some((edge_point(mesh, u, t, entry) - edge_point(mesh, u, t, exit)).length())
-        })
+        .filter_map(|t| measure::cell_interface_measure(&mesh.points, &mesh.tris[t], u))
         .sum())
 }
 

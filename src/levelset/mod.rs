@@ -5,6 +5,7 @@
 mod arcpoly;
 pub mod expr;
 pub mod interface;
+pub mod measure;
 pub mod redistance;
 pub mod shapes;
 
@@ -13,7 +14,8 @@ pub use interface::{
     enclosed_area, extract_zero_level, interface_distance, interface_length, InterfaceError,
     Polyline,
 };
+pub use measure::{enclosed_measure, interface_measure};
 pub use shapes::{
-    nodal_distance, shape_by_name, Circle, Difference, Flower, Intersection, Rotated, Shape, Union,
-    Zalesak, SHAPE_NAMES,
+    nodal_distance, shape_by_name, Ball, Circle, Difference, Flower, Intersection, Rotated, Shape,
+    ShapePoint, Sphere, Torus, Union, Zalesak, SHAPE_NAMES,
 };

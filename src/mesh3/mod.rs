@@ -26,7 +26,9 @@ use crate::geom::DVec3;
 /// in another order.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh3 {
+    /// Vertex coordinates.
     pub points: Vec<DVec3>,
+    /// Vertex indices of each tetrahedron, positively oriented.
     pub tets: Vec<[u32; 4]>,
     /// The tetrahedron across local face `i`, or `NONE` on the boundary.
     pub neighbours: Vec<[u32; 4]>,

@@ -106,12 +106,15 @@ pub struct QualityStats {
     pub edges: usize,
     /// Share of edges whose metric length is in `[1/sqrt(2), sqrt(2)]`.
     pub edge_length_in_range: f64,
+    /// Smallest metric edge length.
     pub edge_length_min: f64,
+    /// Largest metric edge length.
     pub edge_length_max: f64,
     /// Number of triangles measured.
     pub tris: usize,
     /// Mean of `Q_ani` over the triangles (`+inf` if any triangle is inverted).
     pub q_ani_mean: f64,
+    /// Largest `Q_ani` (the worst triangle).
     pub q_ani_max: f64,
     /// Index of the triangle with the largest `Q_ani` (the first one on ties).
     pub worst_tri: usize,

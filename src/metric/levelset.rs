@@ -37,8 +37,11 @@ pub fn geometric_metric<const D: usize, S: SymTensor<D>>(
 /// `max_aniso` (see [`super::Sym2::bound`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MetricBounds {
+    /// Smallest size.
     pub hmin: f64,
+    /// Largest size.
     pub hmax: f64,
+    /// Largest ratio of the sizes of one metric.
     pub max_aniso: f64,
 }
 

@@ -23,11 +23,17 @@ use crate::error::{Error, Result};
 /// Symmetric 3x3 matrix `[[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Sym3 {
+    /// Entry `(0, 0)`.
     pub xx: f64,
+    /// Entry `(0, 1)`.
     pub xy: f64,
+    /// Entry `(0, 2)`.
     pub xz: f64,
+    /// Entry `(1, 1)`.
     pub yy: f64,
+    /// Entry `(1, 2)`.
     pub yz: f64,
+    /// Entry `(2, 2)`.
     pub zz: f64,
 }
 

@@ -10,8 +10,11 @@ use crate::geom::DVec2;
 /// Symmetric 2x2 matrix `[[xx, xy], [xy, yy]]`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Sym2 {
+    /// Entry `(0, 0)`.
     pub xx: f64,
+    /// Entry `(0, 1) = (1, 0)`.
     pub xy: f64,
+    /// Entry `(1, 1)`.
     pub yy: f64,
 }
 

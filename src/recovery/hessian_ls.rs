@@ -21,7 +21,9 @@ use rayon::prelude::*;
 /// Recovered derivatives of a P1 field, one entry per vertex.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Recovered {
+    /// Gradient at each vertex.
     pub gradient: Vec<DVec2>,
+    /// Hessian at each vertex.
     pub hessian: Vec<Sym2>,
 }
 

@@ -118,7 +118,9 @@ fn level_2_stays_bounded() {
 
 #[test]
 fn bad_input_3d() {
-    use anisomesh::levelset::redistance::{redistance_geometric_3d, redistance_ppr_3d, PprOptions};
+    use anisomesh::levelset::redistance::{
+        redistance_geometric_cells, redistance_ppr_cells, PprOptions,
+    };
     use anisomesh::mesh3::Mesh3;
     use anisomesh::{DVec3, Error};
     let m = Mesh3::kuhn_box(DVec3::splat(-1.0), DVec3::splat(1.0), [2, 2, 2]).unwrap();
@@ -126,22 +128,22 @@ fn bad_input_3d() {
     let opts = PprOptions::default();
     // No zero crossing.
     assert!(matches!(
-        redistance_ppr_3d(&m.points, &m.tets, &ones, &opts),
+        redistance_ppr_cells(&m.points, &m.tets, &ones, &opts),
         Err(Error::EmptyLevelSet(_))
     ));
     assert!(matches!(
-        redistance_geometric_3d(&m.points, &m.tets, &ones),
+        redistance_geometric_cells(&m.points, &m.tets, &ones),
         Err(Error::EmptyLevelSet(_))
     ));
     // NaN: the error names the node.
     let mut f: Vec<f64> = m.points.iter().map(|p| p.x + 0.1).collect();
     f[5] = f64::NAN;
-    match redistance_ppr_3d(&m.points, &m.tets, &f, &opts) {
+    match redistance_ppr_cells(&m.points, &m.tets, &f, &opts) {
         Err(Error::InvalidField { msg, .. }) => assert!(msg.contains("vertex 5"), "{msg}"),
         other => panic!("expected InvalidField, got {other:?}"),
     }
     assert!(matches!(
-        redistance_geometric_3d(&m.points, &m.tets, &f),
+        redistance_geometric_cells(&m.points, &m.tets, &f),
         Err(Error::InvalidField { .. })
     ));
     // P2 needs the edge values too; bad options are typed errors.
@@ -151,7 +153,7 @@ fn bad_input_3d() {
         ..PprOptions::default()
     };
     assert!(matches!(
-        redistance_ppr_3d(&m.points, &m.tets, &f, &p2),
+        redistance_ppr_cells(&m.points, &m.tets, &f, &p2),
         Err(Error::InvalidField { .. })
     ));
     let layers = PprOptions {
@@ -159,7 +161,7 @@ fn bad_input_3d() {
         ..PprOptions::default()
     };
     assert!(matches!(
-        redistance_ppr_3d(&m.points, &m.tets, &f, &layers),
+        redistance_ppr_cells(&m.points, &m.tets, &f, &layers),
         Err(Error::InvalidInput(_))
     ));
 }

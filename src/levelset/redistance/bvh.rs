@@ -4,17 +4,17 @@
 //! The tree is binary, built top-down by median splits along the longest axis of the centroid box
 //! (O(m log² m)), stored as a flat array of nodes; leaves hold at most [`LEAF`] primitives. A query
 //! is a depth-first branch and bound (nearer child first, boxes pruned when their distance is not
-//! below the best found), O(log m) on average. Coordinates are `DVec3` (z = 0 in 2D).
+//! below the best found), O(log m) on average. Points are any [`Point<D>`].
 
-use crate::geom::DVec3;
+use crate::geom::Point;
 
 /// Maximum number of primitives in a leaf.
 const LEAF: usize = 4;
 
 #[derive(Debug, Clone, Copy)]
-struct Node {
-    lo: DVec3,
-    hi: DVec3,
+struct Node<P> {
+    lo: P,
+    hi: P,
     /// Leaf: first primitive in `order`; inner node: index of the left child (right = left + 1).
     first: u32,
     /// Number of primitives for a leaf, 0 for an inner node.
@@ -23,60 +23,63 @@ struct Node {
 
 /// The hierarchy: nodes plus the permutation of primitive indices.
 #[derive(Debug, Clone)]
-pub(crate) struct Bvh {
-    nodes: Vec<Node>,
+pub(crate) struct Bvh<P> {
+    nodes: Vec<Node<P>>,
     order: Vec<u32>,
 }
 
 /// Squared distance from `p` to the box `[lo, hi]`.
 #[inline]
-fn box_dist2(p: &DVec3, lo: &DVec3, hi: &DVec3) -> f64 {
+fn box_dist2<const D: usize, P: Point<D>>(p: &P, lo: &P, hi: &P) -> f64 {
     let mut s = 0.0;
-    for k in 0..3 {
+    for k in 0..D {
         let d = (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0);
         s += d * d;
     }
     s
 }
 
-impl Bvh {
+impl<P> Bvh<P> {
     /// Build from the bounding boxes `(lo, hi)` of `m >= 1` primitives.
-    pub(crate) fn build(boxes: &[(DVec3, DVec3)]) -> Bvh {
+    pub(crate) fn build<const D: usize>(boxes: &[(P, P)]) -> Bvh<P>
+    where
+        P: Point<D>,
+    {
         let m = boxes.len();
-        let centre: Vec<DVec3> = boxes.iter().map(|(lo, hi)| (*lo + *hi) * 0.5).collect();
+        let centre: Vec<P> = boxes.iter().map(|(lo, hi)| (*lo + *hi) * 0.5).collect();
         let mut order: Vec<u32> = (0..m as u32).collect();
         let mut nodes = Vec::with_capacity(2 * m / LEAF + 2);
         nodes.push(Node {
-            lo: DVec3::ZERO,
-            hi: DVec3::ZERO,
+            lo: P::ZERO,
+            hi: P::ZERO,
             first: 0,
             count: 0,
         });
         // Explicit stack of (node, start, end) to avoid recursion depth limits.
         let mut stack = vec![(0usize, 0usize, m)];
         while let Some((ni, s, e)) = stack.pop() {
-            let mut lo = DVec3::INFINITY;
-            let mut hi = DVec3::NEG_INFINITY;
-            let mut clo = DVec3::INFINITY;
-            let mut chi = DVec3::NEG_INFINITY;
+            let mut lo = [f64::INFINITY; D];
+            let mut hi = [f64::NEG_INFINITY; D];
+            let mut clo = [f64::INFINITY; D];
+            let mut chi = [f64::NEG_INFINITY; D];
             for &i in &order[s..e] {
                 let (bl, bh) = &boxes[i as usize];
                 let c = &centre[i as usize];
-                for k in 0..3 {
+                for k in 0..D {
                     lo[k] = lo[k].min(bl[k]);
                     hi[k] = hi[k].max(bh[k]);
                     clo[k] = clo[k].min(c[k]);
                     chi[k] = chi[k].max(c[k]);
                 }
             }
-            nodes[ni].lo = lo;
-            nodes[ni].hi = hi;
+            nodes[ni].lo = P::from_array(lo);
+            nodes[ni].hi = P::from_array(hi);
             if e - s <= LEAF {
                 nodes[ni].first = s as u32;
                 nodes[ni].count = (e - s) as u32;
                 continue;
             }
-            let axis = (0..3)
+            let axis = (0..D)
                 .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
                 .unwrap_or(0);
             let mid = s + (e - s) / 2;
@@ -102,13 +105,16 @@ impl Bvh {
     /// bound). Ties are broken towards the primitive found first; the returned *distance* is the
     /// minimum over all primitives whatever the hint.
     #[inline]
-    pub(crate) fn nearest(
+    pub(crate) fn nearest<const D: usize>(
         &self,
-        p: &DVec3,
+        p: &P,
         hint: u32,
         dist: impl Fn(u32) -> f64,
         stack: &mut Vec<u32>,
-    ) -> (u32, f64) {
+    ) -> (u32, f64)
+    where
+        P: Point<D>,
+    {
         let mut best = hint;
         let mut best_d = dist(hint);
         let mut best_d2 = best_d * best_d;
@@ -156,6 +162,7 @@ impl Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::DVec3;
 
     #[test]
     fn nearest_matches_brute_force_on_points() {

@@ -26,106 +26,80 @@
 use rayon::prelude::*;
 
 use super::bvh::Bvh;
+use super::pieces::ZeroLevelPieces;
 use crate::error::{Error, Result};
-use crate::geom::{point_segment_distance, DVec2, DVec3};
+use crate::geom::Point;
 use crate::mesh::{check_p1_field, Mesh2};
 
 /// Vertices per parallel chunk: each chunk is processed sequentially with the previous answer as
 /// the first upper bound, so consecutive (usually nearby) vertices make queries cheap.
 const CHUNK: usize = 2048;
 
-/// The point where the zero level crosses the edge `(a, b)` with `u_a u_b < 0`, computed from the
-/// lower-numbered end so that every cell sharing the edge gets the same bits.
-#[inline]
-fn crossing<P>(a: u32, b: u32, u: &[f64], x: impl Fn(u32) -> P) -> P
-where
-    P: std::ops::Add<Output = P>
-        + std::ops::Sub<Output = P>
-        + std::ops::Mul<f64, Output = P>
-        + Copy,
-{
-    let (a, b) = if a < b { (a, b) } else { (b, a) };
-    let (ua, ub) = (u[a as usize], u[b as usize]);
-    let t = ua / (ua - ub);
-    x(a) + (x(b) - x(a)) * t
-}
-
-/// The zero level of the P1 field `u` on the live triangles of `mesh`, one segment per cut
-/// triangle (a degenerate segment for a triangle touching it at one vertex, three segments for a
-/// triangle whose three values are 0). Not chained. Checks nothing.
-pub(crate) fn zero_segments(mesh: &Mesh2, u: &[f64]) -> Vec<[DVec2; 2]> {
-    let mut segs = Vec::new();
-    let x = |v: u32| mesh.points[v as usize];
-    for t in mesh.live_tris() {
-        let tri = mesh.tris[t];
-        let s = tri.map(|v| u[v as usize]);
-        let neg = s.iter().any(|&v| v < 0.0);
-        let pos = s.iter().any(|&v| v > 0.0);
-        let zeros = s.iter().filter(|&&v| v == 0.0).count();
-        if zeros == 0 && !(neg && pos) {
-            continue;
-        }
-        let mut pts: [DVec2; 3] = [DVec2::ZERO; 3];
-        let mut n = 0;
-        for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            let (ua, ub) = (u[a as usize], u[b as usize]);
-            if ua == 0.0 {
-                pts[n] = x(a);
-                n += 1;
-            } else if ua * ub < 0.0 {
-                pts[n] = crossing(a, b, u, x);
-                n += 1;
-            }
-        }
-        match n {
-            1 => segs.push([pts[0], pts[0]]),
-            2 => segs.push([pts[0], pts[1]]),
-            3 => {
-                segs.push([pts[0], pts[1]]);
-                segs.push([pts[1], pts[2]]);
-                segs.push([pts[2], pts[0]]);
-            }
-            _ => {}
-        }
-    }
-    segs
-}
-
-/// Exact signed distance of every vertex to the piecewise-linear zero level of `u`, sign of `u`
-/// kept (004 §2.2). See the module documentation for the guarantees.
+/// Exact signed distance of every vertex of a triangle mesh to the piecewise-linear zero level of
+/// the P1 field `u`, sign of `u` kept (004 §2.2): [`redistance_geometric_cells`] on the live
+/// triangles of `mesh`. See the module documentation for the guarantees.
 ///
 /// Errors: [`Error::InvalidField`] if `u` has the wrong length or a non-finite value;
 /// [`Error::EmptyLevelSet`] if `u` has no zero on the mesh (all values of one strict sign).
 pub fn redistance_geometric(mesh: &Mesh2, u: &[f64]) -> Result<Vec<f64>> {
-    check_p1_field(mesh.n_points(), u, "u")?;
-    let segs = zero_segments(mesh, u);
-    if segs.is_empty() {
+    let tris: Vec<[u32; 3]> = mesh.live_tris().map(|t| mesh.tris[t]).collect();
+    redistance_geometric_cells(&mesh.points, &tris, u)
+}
+
+/// Exact signed distance of every point to the zero level `Γ_h` of the P1 field `u` on the
+/// simplices `cells` (triangles over `DVec2` points, tetrahedra over `DVec3`), sign of `u` kept
+/// (004 §2.2). `Γ_h` is the soup of pieces of [`ZeroLevelPieces`] (segments in 2D, triangles in
+/// 3D); each point is one nearest-piece query in a bounding-volume hierarchy. See the module
+/// documentation for the guarantees.
+///
+/// Errors: [`Error::InvalidField`] if `u` does not hold one finite value per point;
+/// [`Error::EmptyLevelSet`] if `u` has no zero on the cells (all values of one strict sign).
+pub fn redistance_geometric_cells<const D: usize, const N: usize, P>(
+    points: &[P],
+    cells: &[[u32; N]],
+    u: &[f64],
+) -> Result<Vec<f64>>
+where
+    P: ZeroLevelPieces<D, N>,
+{
+    check_p1_field(points.len(), u, "u")?;
+    let x = |v: u32| points[v as usize];
+    let mut pieces: Vec<[P; D]> = Vec::new();
+    for cell in cells {
+        P::zero_pieces(cell, u, x, &mut pieces);
+    }
+    if pieces.is_empty() {
         return Err(Error::EmptyLevelSet(format!(
-            "the field has no zero crossing on the {} triangles of the mesh (min {:e}, max {:e})",
-            mesh.n_live_tris(),
+            "the field has no zero crossing on the {} {} of the mesh (min {:e}, max {:e})",
+            cells.len(),
+            if N == 3 { "triangles" } else { "tetrahedra" },
             u.iter().copied().fold(f64::INFINITY, f64::min),
             u.iter().copied().fold(f64::NEG_INFINITY, f64::max)
         )));
     }
-    let pts3: Vec<DVec3> = mesh.points.iter().map(|p| p.extend(0.0)).collect();
-    let boxes: Vec<_> = segs
+    let boxes: Vec<(P, P)> = pieces
         .iter()
-        .map(|[a, b]| (a.min(*b).extend(0.0), a.max(*b).extend(0.0)))
+        .map(|f| {
+            let (mut lo, mut hi) = (f[0], f[0]);
+            for q in &f[1..] {
+                lo = lo.min(*q);
+                hi = hi.max(*q);
+            }
+            (lo, hi)
+        })
         .collect();
     let bvh = Bvh::build(&boxes);
-    let dist = distances(&pts3, &bvh, |p, i| {
-        let [a, b] = segs[i as usize];
-        point_segment_distance(p.truncate(), a, b).0
+    let dist = distances(points, &bvh, |p, i| {
+        P::facet_distance(*p, &pieces[i as usize])
     });
     Ok(apply_sign(u, dist))
 }
 
 /// Unsigned distances of `points` to the primitives of `bvh`, parallel over fixed chunks.
-pub(crate) fn distances(
-    points: &[DVec3],
-    bvh: &Bvh,
-    dist: impl Fn(&DVec3, u32) -> f64 + Sync,
+fn distances<const D: usize, P: Point<D>>(
+    points: &[P],
+    bvh: &Bvh<P>,
+    dist: impl Fn(&P, u32) -> f64 + Sync,
 ) -> Vec<f64> {
     let mut out = vec![0.0; points.len()];
     out.par_chunks_mut(CHUNK)
@@ -154,150 +128,4 @@ fn apply_sign(u: &[f64], mut dist: Vec<f64>) -> Vec<f64> {
         };
     }
     dist
-}
-
-/// The zero level of a P1 field on tetrahedra as a triangle soup (a quadrilateral cut is split in
-/// two triangles; a tetrahedron touching the level at vertices or an edge contributes degenerate
-/// triangles so that those points count for distances).
-pub(crate) fn zero_triangles(points: &[DVec3], tets: &[[u32; 4]], u: &[f64]) -> Vec<[DVec3; 3]> {
-    let mut out = Vec::new();
-    let x = |v: u32| points[v as usize];
-    const EDGES: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
-    for tet in tets {
-        let s = tet.map(|v| u[v as usize]);
-        let neg = s.iter().any(|&v| v < 0.0);
-        let pos = s.iter().any(|&v| v > 0.0);
-        let zeros = s.iter().filter(|&&v| v == 0.0).count();
-        if zeros == 0 && !(neg && pos) {
-            continue;
-        }
-        let mut pts = [DVec3::ZERO; 6];
-        let mut n = 0;
-        for (i, &v) in tet.iter().enumerate() {
-            if s[i] == 0.0 {
-                pts[n] = x(v);
-                n += 1;
-            }
-        }
-        for &(i, j) in &EDGES {
-            if s[i] * s[j] < 0.0 {
-                pts[n] = crossing(tet[i], tet[j], u, x);
-                n += 1;
-            }
-        }
-        match n {
-            0 => {}
-            1 => out.push([pts[0]; 3]),
-            2 => out.push([pts[0], pts[1], pts[1]]),
-            3 => out.push([pts[0], pts[1], pts[2]]),
-            _ => {
-                // Four points (a quadrilateral, or all four vertices at zero): order them around
-                // their centroid in the plane of the cut, then fan.
-                let c = pts[..n].iter().copied().sum::<DVec3>() / n as f64;
-                let nrm = (pts[1] - pts[0]).cross(pts[2] - pts[0]);
-                let nrm = if nrm.length_squared() > 0.0 {
-                    nrm
-                } else {
-                    (pts[1] - pts[0]).cross(pts[3] - pts[0])
-                };
-                let e1 = (pts[0] - c).normalize_or_zero();
-                let e2 = nrm.cross(e1).normalize_or_zero();
-                let mut idx: Vec<usize> = (0..n).collect();
-                idx.sort_by(|&a, &b| {
-                    let ang = |k: usize| (pts[k] - c).dot(e2).atan2((pts[k] - c).dot(e1));
-                    ang(a).total_cmp(&ang(b))
-                });
-                for k in 1..n - 1 {
-                    out.push([pts[idx[0]], pts[idx[k]], pts[idx[k + 1]]]);
-                }
-            }
-        }
-    }
-    out
-}
-
-/// Distance from `p` to the triangle `(a, b, c)` (possibly degenerate), after Ericson,
-/// *Real-Time Collision Detection*, §5.1.5.
-pub(crate) fn point_triangle_distance(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    let ab = b - a;
-    let ac = c - a;
-    let ap = p - a;
-    let d1 = ab.dot(ap);
-    let d2 = ac.dot(ap);
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return ap.length();
-    }
-    let bp = p - b;
-    let d3 = ab.dot(bp);
-    let d4 = ac.dot(bp);
-    if d3 >= 0.0 && d4 <= d3 {
-        return bp.length();
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0 {
-        let v = d1 / (d1 - d3);
-        return (p - (a + v * ab)).length();
-    }
-    let cp = p - c;
-    let d5 = ab.dot(cp);
-    let d6 = ac.dot(cp);
-    if d6 >= 0.0 && d5 <= d6 {
-        return cp.length();
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0 {
-        let w = d2 / (d2 - d6);
-        return (p - (a + w * ac)).length();
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0 {
-        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return (p - (b + w * (c - b))).length();
-    }
-    let denom = va + vb + vc;
-    if denom.abs() <= f64::MIN_POSITIVE {
-        // Fully degenerate (collinear) triangle: nearest of the three edges.
-        let seg = |x: DVec3, y: DVec3| {
-            let d = y - x;
-            let l2 = d.length_squared();
-            let t = if l2 > 0.0 {
-                ((p - x).dot(d) / l2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (x + t * d - p).length()
-        };
-        return seg(a, b).min(seg(b, c)).min(seg(a, c));
-    }
-    let v = vb / denom;
-    let w = vc / denom;
-    (p - (a + ab * v + ac * w)).length()
-}
-
-/// Exact signed distance of every vertex of a tetrahedral mesh to the piecewise-planar zero level
-/// of the P1 field `u` (a triangle soup), sign kept: the 3D analogue of
-/// [`redistance_geometric`], with the same guarantees (module documentation).
-pub fn redistance_geometric_3d(points: &[DVec3], tets: &[[u32; 4]], u: &[f64]) -> Result<Vec<f64>> {
-    check_p1_field(points.len(), u, "u")?;
-    let tris = zero_triangles(points, tets, u);
-    if tris.is_empty() {
-        return Err(Error::EmptyLevelSet(format!(
-            "the field has no zero crossing on the {} tetrahedra of the mesh",
-            tets.len()
-        )));
-    }
-    let boxes: Vec<_> = tris
-        .iter()
-        .map(|t| {
-            let lo = t[0].min(t[1]).min(t[2]);
-            let hi = t[0].max(t[1]).max(t[2]);
-            (lo, hi)
-        })
-        .collect();
-    let bvh = Bvh::build(&boxes);
-    let dist = distances(points, &bvh, |p, i| {
-        let [a, b, c] = tris[i as usize];
-        point_triangle_distance(*p, a, b, c)
-    });
-    Ok(apply_sign(u, dist))
 }

@@ -19,11 +19,10 @@ use super::oblique::{project, ObliqueParams};
 use super::ppr::Recovery;
 use super::simplices::Simplices;
 use crate::error::{Error, Result};
-use crate::fem::lagrange::P2Dofs;
-use crate::geom::DVec3;
+use crate::geom::{DVec3, Point};
 use crate::mesh::Mesh2;
 
-/// Options of [`redistance_ppr`] / [`redistance_ppr_3d`].
+/// Options of [`redistance_ppr`] / [`redistance_ppr_cells`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PprOptions {
     /// Polynomial degree `k` of the field (1 = P1, 2 = P2).
@@ -84,16 +83,19 @@ pub struct PprReport {
 }
 
 /// Result of a redistancing: values per node (vertices, then edge dofs for P2, numbered as
-/// [`P2Dofs`]), the band flags, and the report.
+/// [`crate::fem::lagrange::P2Dofs`]), the band flags, and the report.
 #[derive(Debug, Clone)]
 pub struct PprOutput {
+    /// The redistanced values, one per node.
     pub values: Vec<f64>,
     /// `band[n]` = node `n` belongs to a cut cell (its value comes from the oblique projection).
     pub band: Vec<bool>,
+    /// Statistics of the run.
     pub report: PprReport,
 }
 
-fn validate(phi: &[f64], n_nodes: usize, opts: &PprOptions) -> Result<()> {
+/// Checks the options.
+fn validate_options(opts: &PprOptions) -> Result<()> {
     if opts.degree != 1 && opts.degree != 2 {
         return Err(Error::InvalidInput(format!(
             "PPR redistancing: degree must be 1 or 2 (got {})",
@@ -112,24 +114,38 @@ fn validate(phi: &[f64], n_nodes: usize, opts: &PprOptions) -> Result<()> {
             opts.tol, opts.max_outer, opts.max_newton, opts.layers
         )));
     }
-    crate::mesh::check_p1_field(n_nodes, phi, "phi")
+    Ok(())
 }
 
-/// PPR redistancing of a P1 or P2 field on a triangle mesh (003 §6). For `degree = 2`, `phi` is
-/// indexed by [`P2Dofs::for_mesh2`]. Errors: [`Error::InvalidField`] (length, NaN),
-/// [`Error::EmptyLevelSet`] (no cut cell), [`Error::InvalidInput`] (options).
+/// The view of the simplices `cells` over `points` for a field of degree `opts.degree`, after
+/// checking the options and that `phi` holds one finite value per node.
+fn view<const D: usize, const N: usize, P: Point<D>>(
+    points: &[P],
+    cells: impl Iterator<Item = [u32; N]>,
+    phi: &[f64],
+    opts: &PprOptions,
+) -> Result<Simplices> {
+    validate_options(opts)?;
+    let pts = points.iter().map(|p| p.to_xyz()).collect();
+    let sx = Simplices::new(D, pts, cells.flatten().collect(), opts.degree)?;
+    crate::mesh::check_p1_field(sx.n_nodes(), phi, "phi")?;
+    Ok(sx)
+}
+
+/// PPR redistancing of a P1 or P2 field on a triangle mesh (003 §6): [`redistance_ppr_cells`]
+/// on the live triangles of `mesh`, except that the P1 recovered gradient is the recovery
+/// module's ([`crate::recovery::gradient_ppr`], the same fit of 003 §6.2 on the mesh's vertex
+/// patches). For `degree = 2`, `phi` is indexed by [`P2Dofs::for_mesh2`](crate::fem::lagrange::P2Dofs::for_mesh2). Errors:
+/// [`Error::InvalidField`] (length, NaN), [`Error::EmptyLevelSet`] (no cut cell),
+/// [`Error::InvalidInput`] (options).
 pub fn redistance_ppr(mesh: &Mesh2, phi: &[f64], opts: &PprOptions) -> Result<PprOutput> {
-    let n_nodes = if opts.degree == 2 {
-        P2Dofs::for_mesh2(mesh).n_dofs()
-    } else {
-        mesh.n_points()
-    };
-    validate(phi, n_nodes, opts)?;
-    let pts = mesh.points.iter().map(|p| p.extend(0.0)).collect();
-    let cells = mesh.live_tris().flat_map(|t| mesh.tris[t]).collect();
-    let sx = Simplices::new(2, pts, cells, opts.degree)?;
+    let sx = view(
+        &mesh.points,
+        mesh.live_tris().map(|t| mesh.tris[t]),
+        phi,
+        opts,
+    )?;
     if opts.degree == 1 {
-        // P1 on triangles: the recovery module's PPR (same fit, 003 §6.2).
         let g: Vec<DVec3> = crate::recovery::gradient_ppr(mesh, phi)?
             .iter()
             .map(|g| g.extend(0.0))
@@ -139,23 +155,17 @@ pub fn redistance_ppr(mesh: &Mesh2, phi: &[f64], opts: &PprOptions) -> Result<Pp
     run(&sx, phi, opts, Recovery::new(&sx, phi))
 }
 
-/// PPR redistancing of a P1 or P2 field on a tetrahedral mesh (003 §6), `phi` indexed by vertex
-/// then by [`P2Dofs::for_tets`] edge dofs. Errors as [`redistance_ppr`].
-pub fn redistance_ppr_3d(
-    points: &[DVec3],
-    tets: &[[u32; 4]],
+/// PPR redistancing (003 §6) of a P1 or P2 field on the simplices `cells` over `points`
+/// (triangles over `DVec2`, tetrahedra over `DVec3`); `phi` is indexed by vertex, then for P2 by
+/// the edge dofs of [`P2Dofs::for_triangles`](crate::fem::lagrange::P2Dofs::for_triangles) / [`P2Dofs::for_tets`](crate::fem::lagrange::P2Dofs::for_tets). The recovered gradient is
+/// the PPR fit of 003 §6.2 on the cell patches of each vertex. Errors as [`redistance_ppr`].
+pub fn redistance_ppr_cells<const D: usize, const N: usize, P: Point<D>>(
+    points: &[P],
+    cells: &[[u32; N]],
     phi: &[f64],
     opts: &PprOptions,
 ) -> Result<PprOutput> {
-    let n_nodes = if opts.degree == 2 {
-        P2Dofs::for_tets(tets, points.len()).n_dofs()
-    } else {
-        points.len()
-    };
-    validate(phi, n_nodes, opts)?;
-    let pts = points.to_vec();
-    let cells = tets.iter().flatten().copied().collect();
-    let sx = Simplices::new(3, pts, cells, opts.degree)?;
+    let sx = view(points, cells.iter().copied(), phi, opts)?;
     run(&sx, phi, opts, Recovery::new(&sx, phi))
 }
 

@@ -40,7 +40,9 @@ fn corners_where(from: &dyn Shape, keep: impl Fn(DVec2) -> bool) -> Vec<DVec2> {
 /// away from the seams where the two boundaries cross, and an underestimate of `|d|` where the
 /// closest point of one boundary lies inside the other shape.
 pub struct Union {
+    /// The first operand `A`.
     pub a: Box<dyn Shape>,
+    /// The second operand `B`.
     pub b: Box<dyn Shape>,
 }
 
@@ -78,7 +80,9 @@ impl Shape for Union {
 /// Intersection `A ∩ B`: `max(d_A, d_B)`. A distance bound: exact inside; outside, exact away
 /// from the seams where the two boundaries cross and an underestimate near them.
 pub struct Intersection {
+    /// The first operand `A`.
     pub a: Box<dyn Shape>,
+    /// The second operand `B`.
     pub b: Box<dyn Shape>,
 }
 
@@ -113,7 +117,9 @@ impl Shape for Intersection {
 /// Difference `A \ B = A ∩ Bᶜ`: `max(d_A, -d_B)`. A distance bound: exact inside; outside,
 /// exact away from the seams and an underestimate near them.
 pub struct Difference {
+    /// The first operand `A`.
     pub a: Box<dyn Shape>,
+    /// The second operand `B`.
     pub b: Box<dyn Shape>,
 }
 
@@ -149,8 +155,11 @@ impl Shape for Difference {
 /// a rigid rotation such as Zalesak's `u = (-y, x)` (004 §5.1) at time `t = angle`. Distances,
 /// derivatives, area, perimeter and boundary samples are those of the inner shape, rotated.
 pub struct Rotated {
+    /// The shape before rotation.
     pub shape: Box<dyn Shape>,
+    /// Centre of the rotation.
     pub pivot: DVec2,
+    /// Angle in radians, counter-clockwise.
     pub angle: f64,
 }
 

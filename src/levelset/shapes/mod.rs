@@ -1,61 +1,63 @@
 //! Implicit shapes given by signed distance functions (negative inside, positive outside; 004
 //! §2.1: the level set is `u = ±d`).
 //!
-//! [`Circle`] and [`Zalesak`] have exact signed distances with analytic gradients and Hessians;
+//! Shapes are generic over the point type ([`ShapePoint`]: `DVec2`, the default, or `DVec3`).
+//! [`Ball`] ([`Circle`] in the plane, [`Sphere`] in space), [`Torus`] (space) and [`Zalesak`]
+//! (plane) have exact signed distances with analytic gradients (and Hessians, but for the torus);
 //! [`Flower`] has a first-order normalised distance; [`Union`], [`Intersection`] and
 //! [`Difference`] combine two shapes by min/max; any [`Expr`] is a shape whose "distance" is just
 //! its value. [`shape_by_name`] builds the shapes the benchmarks use.
 
+mod ball;
 mod csg;
+mod space;
+mod torus;
 
+pub use ball::{Ball, Circle, Sphere};
 pub use csg::{Difference, Intersection, Rotated, Union};
+pub use space::ShapePoint;
+pub use torus::Torus;
 
 use super::arcpoly::{ArcPolygon, Piece};
 use super::expr::Expr;
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::metric::Sym2;
+use space::projector;
 use std::f64::consts::{PI, TAU};
 
-/// A shape given by a signed distance function (negative inside).
-pub trait Shape: Send + Sync {
+/// A shape given by a signed distance function (negative inside), on points `P` of the plane
+/// (`DVec2`, the default: `dyn Shape` is a planar shape) or of space (`DVec3`).
+pub trait Shape<P: ShapePoint = DVec2>: Send + Sync {
     /// Signed distance (or, where documented, an approximation of it) from `p` to the boundary.
-    fn distance(&self, p: DVec2) -> f64;
+    fn distance(&self, p: P) -> f64;
 
     /// Gradient of [`Shape::distance`]. The default uses central differences with step
-    /// `1e-6 max(1, |p|)`.
-    fn gradient(&self, p: DVec2) -> DVec2 {
-        let h = 1e-6 * p.abs().max_element().max(1.0);
-        let dx = self.distance(p + DVec2::new(h, 0.0)) - self.distance(p - DVec2::new(h, 0.0));
-        let dy = self.distance(p + DVec2::new(0.0, h)) - self.distance(p - DVec2::new(0.0, h));
-        DVec2::new(dx, dy) / (2.0 * h)
+    /// `1e-6 max(1, |p|_∞)`.
+    fn gradient(&self, p: P) -> P {
+        space::fd_gradient(|q| self.distance(q), p)
     }
 
     /// Hessian of [`Shape::distance`]. The default uses second differences with step
-    /// `1e-4 max(1, |p|)` (truncation error O(h²), round-off O(eps/h²) ≈ 1e-8).
-    fn hessian(&self, p: DVec2) -> Sym2 {
-        let h = 1e-4 * p.abs().max_element().max(1.0);
-        let f = |dx: f64, dy: f64| self.distance(p + DVec2::new(dx, dy));
-        let f0 = f(0.0, 0.0);
-        let xx = (f(h, 0.0) - 2.0 * f0 + f(-h, 0.0)) / (h * h);
-        let yy = (f(0.0, h) - 2.0 * f0 + f(0.0, -h)) / (h * h);
-        let xy = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4.0 * h * h);
-        Sym2::new(xx, xy, yy)
+    /// `1e-4 max(1, |p|_∞)` (truncation error O(h²), round-off O(eps/h²) ≈ 1e-8).
+    fn hessian(&self, p: P) -> P::Hessian {
+        space::fd_hessian(|q| self.distance(q), p)
     }
 
-    /// Exact area of the inside, when known in closed form or by exact geometry.
+    /// Exact measure of the inside (area in 2D, volume in 3D), when known in closed form or by
+    /// exact geometry.
     fn exact_area(&self) -> Option<f64> {
         None
     }
 
-    /// Exact length of the boundary, when known.
+    /// Exact measure of the boundary (length in 2D, area in 3D), when known.
     fn exact_perimeter(&self) -> Option<f64> {
         None
     }
 
     /// About `n` points on the exact interface (for the exact → discrete Hausdorff direction),
     /// or `None` when the shape cannot sample its boundary.
-    fn boundary_samples(&self, _n: usize) -> Option<Vec<DVec2>> {
+    fn boundary_samples(&self, _n: usize) -> Option<Vec<P>> {
         None
     }
 
@@ -63,7 +65,7 @@ pub trait Shape: Send + Sync {
     /// the zero level, or empty for a smooth shape (the default). The distance has a kink there
     /// that a P1 level set cannot follow unless a vertex sits on the corner itself;
     /// [`crate::adapt::adapt_to_shape`] inserts one at each ([`crate::adapt::ShapeAdaptOptions::features`]).
-    fn corners(&self) -> Vec<DVec2> {
+    fn corners(&self) -> Vec<P> {
         Vec::new()
     }
 
@@ -71,14 +73,14 @@ pub trait Shape: Send + Sync {
     fn name(&self) -> String;
 }
 
-impl<S: Shape + ?Sized> Shape for Box<S> {
-    fn distance(&self, p: DVec2) -> f64 {
+impl<P: ShapePoint, S: Shape<P> + ?Sized> Shape<P> for Box<S> {
+    fn distance(&self, p: P) -> f64 {
         (**self).distance(p)
     }
-    fn gradient(&self, p: DVec2) -> DVec2 {
+    fn gradient(&self, p: P) -> P {
         (**self).gradient(p)
     }
-    fn hessian(&self, p: DVec2) -> Sym2 {
+    fn hessian(&self, p: P) -> P::Hessian {
         (**self).hessian(p)
     }
     fn exact_area(&self) -> Option<f64> {
@@ -87,75 +89,14 @@ impl<S: Shape + ?Sized> Shape for Box<S> {
     fn exact_perimeter(&self) -> Option<f64> {
         (**self).exact_perimeter()
     }
-    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
+    fn boundary_samples(&self, n: usize) -> Option<Vec<P>> {
         (**self).boundary_samples(n)
     }
-    fn corners(&self) -> Vec<DVec2> {
+    fn corners(&self) -> Vec<P> {
         (**self).corners()
     }
     fn name(&self) -> String {
         (**self).name()
-    }
-}
-
-/// `(I - n n^T) * s`: the Hessian of `s |p - q|` or `s (|p - c| - R)` with unit `n`, divided by
-/// the distance by the caller.
-fn projector(n: DVec2, s: f64) -> Sym2 {
-    Sym2::new(s * (1.0 - n.x * n.x), -s * n.x * n.y, s * (1.0 - n.y * n.y))
-}
-
-/// The disk of centre `centre` and radius `radius`: `d = |p - c| - R` (exact).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Circle {
-    pub centre: DVec2,
-    pub radius: f64,
-}
-
-impl Shape for Circle {
-    fn distance(&self, p: DVec2) -> f64 {
-        (p - self.centre).length() - self.radius
-    }
-    /// `(p - c) / |p - c|`; `(1, 0)` at the centre, where the distance is not differentiable.
-    fn gradient(&self, p: DVec2) -> DVec2 {
-        let d = p - self.centre;
-        let r = d.length();
-        if r > 0.0 {
-            d / r
-        } else {
-            DVec2::X
-        }
-    }
-    /// `(I - n n^T) / |p - c|`; zero at the centre (the cone tip has no finite Hessian).
-    fn hessian(&self, p: DVec2) -> Sym2 {
-        let d = p - self.centre;
-        let r = d.length();
-        if r > 0.0 {
-            projector(d / r, 1.0 / r)
-        } else {
-            Sym2::default()
-        }
-    }
-    fn exact_area(&self) -> Option<f64> {
-        Some(PI * self.radius * self.radius)
-    }
-    fn exact_perimeter(&self) -> Option<f64> {
-        Some(TAU * self.radius)
-    }
-    fn boundary_samples(&self, n: usize) -> Option<Vec<DVec2>> {
-        Some(
-            (0..n)
-                .map(|i| {
-                    let (s, c) = (TAU * i as f64 / n as f64).sin_cos();
-                    self.centre + self.radius * DVec2::new(c, s)
-                })
-                .collect(),
-        )
-    }
-    fn name(&self) -> String {
-        format!(
-            "circle(centre = ({}, {}), radius = {})",
-            self.centre.x, self.centre.y, self.radius
-        )
     }
 }
 
@@ -171,9 +112,13 @@ impl Shape for Circle {
 /// pieces (Green's theorem), not tabulated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Zalesak {
+    /// Centre of the disk.
     pub centre: DVec2,
+    /// Radius of the disk.
     pub radius: f64,
+    /// Half the width of the slot.
     pub half_width: f64,
+    /// Height `y` of the slot's top.
     pub slot_top: f64,
     curve: ArcPolygon,
 }
@@ -319,9 +264,13 @@ impl Shape for Zalesak {
 /// trapezoidal rule (spectrally accurate).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Flower {
+    /// Centre of the polar coordinates.
     pub centre: DVec2,
+    /// Mean radius `r0`.
     pub r0: f64,
+    /// Amplitude `a` of the petals.
     pub a: f64,
+    /// Number of petals `k`.
     pub k: u32,
 }
 

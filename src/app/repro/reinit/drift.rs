@@ -7,7 +7,7 @@ use super::torus::{nodes3, refined_box};
 use anisomesh::error::Result;
 use anisomesh::fem::lagrange::{self, P2Dofs};
 use anisomesh::geom::DVec3;
-use anisomesh::levelset::redistance::{redistance_geometric_3d, redistance_ppr_3d, PprOptions};
+use anisomesh::levelset::redistance::{redistance_geometric_cells, redistance_ppr_cells, PprOptions};
 use anisomesh::mesh3::Mesh3;
 
 /// Fraction of a simplex where the linear function with vertex values `u` is negative: the
@@ -151,7 +151,7 @@ pub fn sphere_drift_signed(
         ..PprOptions::default()
     };
     drift_with(level, k, reps, bar, |m, f| {
-        Ok(redistance_ppr_3d(&m.points, &m.tets, f, &opts)?.values)
+        Ok(redistance_ppr_cells(&m.points, &m.tets, f, &opts)?.values)
     })
 }
 
@@ -164,7 +164,7 @@ pub fn sphere_drift_geometric_signed(
     bar: Option<&ProgressBar>,
 ) -> Result<Vec<f64>> {
     drift_with(level, 1, reps, bar, |m, f| {
-        redistance_geometric_3d(&m.points, &m.tets, f)
+        redistance_geometric_cells(&m.points, &m.tets, f)
     })
 }
 

@@ -6,7 +6,7 @@ use super::types::CaseResult;
 use anisomesh::error::Result;
 use anisomesh::fem::lagrange::P2Dofs;
 use anisomesh::geom::DVec3;
-use anisomesh::levelset::redistance::redistance_ppr_3d;
+use anisomesh::levelset::redistance::redistance_ppr_cells;
 use anisomesh::mesh3::Mesh3;
 
 /// Exact signed distance to the torus of 003 §8, Example 1.
@@ -53,7 +53,7 @@ pub fn torus_case_on(m: &Mesh3, level: u32, k: usize, alpha: f64) -> Result<Case
         .iter()
         .map(|p| torus_distance(*p) * q_alpha(alpha, p.x, p.y, p.length()))
         .collect();
-    let out = redistance_ppr_3d(&m.points, &m.tets, &phi, &table_opts(k))?;
+    let out = redistance_ppr_cells(&m.points, &m.tets, &phi, &table_opts(k))?;
     let e_inf = x
         .iter()
         .enumerate()
