@@ -6,6 +6,7 @@
 
 pub mod adapt;
 pub mod advect;
+pub mod backends;
 pub mod bench;
 pub mod error;
 pub mod fem;
