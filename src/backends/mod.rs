@@ -27,7 +27,7 @@ pub mod adapted;
 mod implicit;
 mod report;
 
-pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme};
+pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme, Redistancing};
 pub use implicit::FnShape;
 pub use report::{CurvatureSamples, PhaseTimes, StepReport, TriangleSurface};
 
@@ -128,8 +128,9 @@ pub trait LevelSetBackend<D: Dimension> {
     /// Moves the zero level by mean curvature over `[t, t + dt]`: the normal velocity is `-κ`
     /// with `κ = div(∇u/|∇u|)` (the sum of the principal curvatures, positive where the inside is
     /// convex), so a circle of radius `R0` follows `R(t) = √(R0² − 2t)` and a sphere
-    /// `R(t) = √(R0² − 4t)` (000 §2, eq. (2.4)–(2.5); 002). Afterwards `u` is a signed
-    /// distance to the new zero level. Error: [`crate::Error::EmptyLevelSet`] when the zero level
+    /// `R(t) = √(R0² − 4t)` (000 §2, eq. (2.4)–(2.5); 002). Afterwards `u` is close to a
+    /// signed distance to the new zero level (how close is the back end's documented choice;
+    /// [`LevelSetBackend::redistance`] gives the distance itself). Error: [`crate::Error::EmptyLevelSet`] when the zero level
     /// vanishes during the step (the state is then unspecified).
     fn advance_mean_curvature(&mut self, dt: f64) -> Result<StepReport>;
 
