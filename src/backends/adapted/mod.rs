@@ -165,7 +165,11 @@ impl AdaptedOptions {
             isotropic: false,
         };
         m.validate()?;
-        if self.readapt_rounds == 0 || !(self.readapt_tol >= 0.0) || !(self.distance_tol >= 0.0) {
+        let non_negative = |x: f64| x >= 0.0;
+        if self.readapt_rounds == 0
+            || !non_negative(self.readapt_tol)
+            || !non_negative(self.distance_tol)
+        {
             return Err(Error::InvalidInput(format!(
                 "adapted back end: need readapt_rounds >= 1, readapt_tol >= 0 and \
                  distance_tol >= 0 (got {}, {}, {})",
