@@ -19,6 +19,7 @@
 
 pub mod adapt;
 pub mod advect;
+pub mod backends;
 pub mod error;
 pub mod fem;
 pub mod flows;

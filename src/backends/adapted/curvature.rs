@@ -1,0 +1,66 @@
+//! Curvature of the zero level of a P1 level set from its recovered derivatives: at every vertex
+//! `κ = div(∇u/|∇u|) = (|g|² tr H − gᵀ H g) / |g|³` with the gradient `g` and Hessian `H` of
+//! the least-squares fit of 004 §4.3, then linear interpolation along each edge the zero level
+//! crosses, at the crossing point.
+
+use super::super::{CurvatureSamples, D2};
+use crate::error::{Error, Result};
+use crate::geom::DVec2;
+use crate::mesh::Mesh2;
+use crate::metric::Sym2;
+use crate::recovery::recover_ls;
+
+/// `div(g/|g|)` for gradient `g` and Hessian `h` (0 where `g` vanishes).
+fn level_curvature(g: DVec2, h: &Sym2) -> f64 {
+    let n2 = g.length_squared();
+    if n2 <= 0.0 {
+        return 0.0;
+    }
+    let hg = DVec2::new(h.xx * g.x + h.xy * g.y, h.xy * g.x + h.yy * g.y);
+    (n2 * (h.xx + h.yy) - g.dot(hg)) / (n2 * n2.sqrt())
+}
+
+/// `|∇u| div(∇u/|∇u|) = tr H − gᵀ H g / |g|²` at every vertex, from the least-squares gradient
+/// and Hessian (004 §4.3): the right-hand side of the level-set mean curvature equation
+/// `u_t = |∇u| div(∇u/|∇u|)` (000 eq. (2.4)). Errors: those of the recovery.
+pub(crate) fn mean_curvature_speed(mesh: &Mesh2, u: &[f64]) -> Result<Vec<f64>> {
+    let rec = recover_ls(mesh, u)?;
+    Ok(rec
+        .gradient
+        .iter()
+        .zip(&rec.hessian)
+        .map(|(&g, h)| g.length() * level_curvature(g, h))
+        .collect())
+}
+
+/// Curvature samples at the crossings of the zero level of `u` with the edges of `mesh` (sign
+/// rule of [`crate::levelset::interface`]: a vertex is negative when `u < 0`). Error:
+/// [`Error::EmptyLevelSet`] when no edge is crossed, or those of the recovery.
+pub(crate) fn curvature_samples(mesh: &Mesh2, u: &[f64]) -> Result<CurvatureSamples<D2>> {
+    let rec = recover_ls(mesh, u)?;
+    let kappa: Vec<f64> = rec
+        .gradient
+        .iter()
+        .zip(&rec.hessian)
+        .map(|(&g, h)| level_curvature(g, h))
+        .collect();
+    let mut points = Vec::new();
+    let mut values = Vec::new();
+    for ([a, b], _, _) in mesh.edges() {
+        let (ua, ub) = (u[a as usize], u[b as usize]);
+        if (ua < 0.0) == (ub < 0.0) {
+            continue;
+        }
+        let s = ua / (ua - ub);
+        let (pa, pb) = (mesh.points[a as usize], mesh.points[b as usize]);
+        points.push(pa + s * (pb - pa));
+        values.push((1.0 - s) * kappa[a as usize] + s * kappa[b as usize]);
+    }
+    if values.is_empty() {
+        return Err(Error::EmptyLevelSet(format!(
+            "no edge of the {} vertices crosses the zero level",
+            mesh.n_points()
+        )));
+    }
+    Ok(CurvatureSamples { points, values })
+}
