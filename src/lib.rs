@@ -17,6 +17,8 @@
 //! # Ok::<(), anisomesh::Error>(())
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod adapt;
 pub mod advect;
 pub mod backends;
