@@ -7,7 +7,9 @@ use super::torus::{nodes3, refined_box};
 use anisomesh::error::Result;
 use anisomesh::fem::lagrange::{self, P2Dofs};
 use anisomesh::geom::DVec3;
-use anisomesh::levelset::redistance::{redistance_geometric_cells, redistance_ppr_cells, PprOptions};
+use anisomesh::levelset::redistance::{
+    redistance_geometric_cells, redistance_ppr_cells, PprOptions,
+};
 use anisomesh::mesh3::Mesh3;
 
 /// Fraction of a simplex where the linear function with vertex values `u` is negative: the
