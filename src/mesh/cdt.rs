@@ -31,8 +31,16 @@ pub fn from_polygon(
     d.mesh()
 }
 
+impl PolygonDomain {
+    /// Meshes the domain: a constrained Delaunay triangulation of its loops (see the module
+    /// documentation).
+    pub fn mesh(&self) -> Result<Mesh2> {
+        mesh_domain(self)
+    }
+}
+
 /// Meshes the domain `d` (see the module documentation).
-pub(super) fn mesh_domain(d: &PolygonDomain) -> Result<Mesh2> {
+fn mesh_domain(d: &PolygonDomain) -> Result<Mesh2> {
     let loops = validate(d)?;
     // Vertices: each loop's points with subdivision points; constraint edges between them.
     let mut pts: Vec<DVec2> = Vec::new();

@@ -8,7 +8,6 @@
 //! consecutive points, zero-area loops, self-intersecting or mutually intersecting/touching
 //! loops, and loops outside the outer boundary are all reported as [`Error::InvalidInput`].
 
-use super::Mesh2;
 use crate::error::{Error, Result};
 use crate::geom::{orient2d, DVec2};
 use rstar::{primitives::GeomWithData, primitives::Rectangle, RTree, AABB};
@@ -120,12 +119,6 @@ impl PolygonDomain {
     pub fn with_min_angle(mut self, deg: f64) -> Self {
         self.min_angle_deg = Some(deg);
         self
-    }
-
-    /// Meshes the domain: a constrained Delaunay triangulation of its loops (see the
-    /// documentation of `cdt.rs`).
-    pub fn mesh(&self) -> Result<Mesh2> {
-        super::cdt::mesh_domain(self)
     }
 }
 
