@@ -4,7 +4,8 @@
 //! from 0 at the centre to above 6 in the corners). The geometric redistancing of 004 §2.2
 //! replaces every value by the exact distance to the piecewise-linear zero level, with the sign
 //! of `u`, in `O((m + n) log m)` for `n` vertices and `m` interface segments. The zero level
-//! itself does not move.
+//! of the new P1 field moves by far less than the mesh size (the enclosed area changes by a few
+//! 1e-5 here).
 //!
 //! `cargo run --release --example redistance`
 
@@ -44,12 +45,12 @@ fn main() -> anisomesh::Result<()> {
         .iter()
         .fold((f64::INFINITY, 0.0_f64), |(l, h), &s| (l.min(s), h.max(s)));
     println!("|grad d| within 0.1 of the interface: [{lo:.4}, {hi:.4}]");
+    let (a0, a1) = (enclosed_area(&mesh, &u)?, enclosed_area(&mesh, &d)?);
+    let (l0, l1) = (interface_length(&mesh, &u)?, interface_length(&mesh, &d)?);
     println!(
-        "area {:.6} -> {:.6}, perimeter {:.6} -> {:.6} (unchanged zero level)",
-        enclosed_area(&mesh, &u)?,
-        enclosed_area(&mesh, &d)?,
-        interface_length(&mesh, &u)?,
-        interface_length(&mesh, &d)?
+        "area {a0:.6} -> {a1:.6} ({:+.1e}), perimeter {l0:.6} -> {l1:.6} ({:+.1e})",
+        (a1 - a0) / a0,
+        (l1 - l0) / l0
     );
     Ok(())
 }
