@@ -39,6 +39,9 @@ mod kernel;
 mod topo;
 mod workspace;
 
+mod cycle;
+mod pass;
+
 mod collapse;
 mod flip;
 mod insert;

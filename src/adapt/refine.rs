@@ -1,11 +1,12 @@
-//! The refinement pass (004 §3.5): edges longer than `l_max` in the metric get a new vertex at
-//! their metric midpoint, by a plain edge split (`split.rs`) or by the anisotropic Delaunay
+//! The refinement operator (004 §3.5): edges longer than `l_max` in the metric get a new vertex
+//! at their metric midpoint, by a plain edge split (`split.rs`) or by the anisotropic Delaunay
 //! insertion kernel (`insert.rs`), which both plan from the same [`split::SplitPlan`].
 
-use super::topo::{parallel_worth, Ctx};
-use super::{insert, split};
+use super::insert::{self, InsertPlan};
+use super::pass::{run_pass, Operator};
+use super::split::{self, SplitPlan};
+use super::topo::Ctx;
 use crate::mesh::{next, prev, NONE};
-use rayon::prelude::*;
 
 /// Sort key of a split candidate: longest first by classes of a quarter octave (edges of
 /// length 1.41 to 2^24), then by triangle index — which keeps the new vertices (appended in this
@@ -16,26 +17,48 @@ fn split_key(l: f64, t: u32, i: usize) -> u64 {
     (class << 40) | (u64::from(t) << 2) | i as u64
 }
 
-/// One refinement pass: every edge longer than `l_max` next to a triangle modified since the
-/// last refinement pass, longest first, at most one new vertex per triangle per pass (an
-/// independent set). Each edge that passes the split check ([`split::check`]) gets its new
-/// vertex by the Delaunay insertion kernel ([`insert`]) when `params.insertion` is set and the
-/// insertion is valid (unlabelled interior edges), else by a plain split ([`split::apply`]).
-/// Returns the number of new vertices.
-pub fn pass(ctx: &mut Ctx, cand: &mut Vec<u64>) -> usize {
-    ctx.new_pass();
-    let from = ctx.split_pos;
-    ctx.split_pos = ctx.log.len();
-    cand.clear();
-    let l_max = ctx.params.l_max;
-    // Only edges of triangles modified since the last split pass. An edge shared by two listed
-    // triangles is measured once, from the one of lower index, and gets a key for each side (the
-    // check is not symmetric in the last bits of the new point, and the apply loop tries the
-    // second side when the first fails). The keys are unique, so their order does not depend
-    // on how they were collected.
-    let list = ctx.logged_since(from);
-    let gen = ctx.gen;
-    let keys = |c: &Ctx, t: u32, out: &mut dyn FnMut(u64)| {
+/// The triangle and local edge of a split key.
+#[inline]
+fn key_edge(key: u64) -> (u32, usize) {
+    ((key >> 2) as u32, (key & 3) as usize)
+}
+
+/// A new vertex on a long edge: a plain split or a Delaunay insertion.
+pub(crate) enum RefinePlan {
+    /// Split the edge ([`split::apply`]).
+    Split(SplitPlan),
+    /// Insert by the Delaunay kernel ([`insert::apply`]).
+    Insert(InsertPlan),
+}
+
+/// The refinement operator: sites are the triangles modified since the last refinement pass,
+/// candidates their edges longer than `l_max` (measured on the state at the start of the pass),
+/// longest first, at most one new vertex per triangle per pass (an independent set). Each edge
+/// that passes the split check ([`split::check`]) gets its new vertex by the Delaunay insertion
+/// kernel ([`insert`]) when `params.insertion` is set and the insertion is valid (unlabelled
+/// interior edges), else by a plain split ([`split::apply`]).
+pub(crate) struct Refine;
+
+impl Operator<Ctx<'_>> for Refine {
+    type Site = u32;
+    type Key = u64;
+    type Frozen = ();
+    type Plan = RefinePlan;
+    const SORTED: bool = true;
+
+    fn sites(&mut self, ctx: &mut Ctx) -> Vec<u32> {
+        ctx.new_pass();
+        let from = ctx.split_pos;
+        ctx.split_pos = ctx.log.len();
+        ctx.logged_since(from)
+    }
+
+    /// An edge shared by two listed triangles is measured once, from the one of lower index,
+    /// and gets a key for each side (the check is not symmetric in the last bits of the new
+    /// point, and the visit tries the second side when the first fails). The keys are unique,
+    /// so their order does not depend on how they were collected.
+    fn survey(&self, c: &Ctx, t: u32, _evaluate: bool, out: &mut Vec<(u64, Option<()>)>) {
+        let (gen, l_max) = (c.gen, c.params.l_max);
         let tri = c.mesh.tris[t as usize];
         for i in 0..3 {
             let nb = c.mesh.neighbours[t as usize][i];
@@ -44,51 +67,54 @@ pub fn pass(ctx: &mut Ctx, cand: &mut Vec<u64>) -> usize {
                 continue;
             }
             if let Some(l) = c.len_if_above(tri[next(i)], tri[prev(i)], l_max) {
-                out(split_key(l, t, i));
+                out.push((split_key(l, t, i), None));
                 if nb_listed {
                     if let Some(j) = c.mesh.mirror_edge(t as usize, nb as usize) {
-                        out(split_key(l, nb, j));
+                        out.push((split_key(l, nb, j), None));
                     }
                 }
             }
         }
-    };
-    if parallel_worth(list.len()) {
-        let c: &Ctx = ctx;
-        cand.par_extend(list.par_iter().flat_map_iter(|&t| {
-            let mut v = Vec::new();
-            keys(c, t, &mut |k| v.push(k));
-            v
-        }));
-        cand.par_sort_unstable();
-    } else {
-        for &t in &list {
-            keys(ctx, t, &mut |k| cand.push(k));
-        }
-        cand.sort_unstable();
     }
-    let mut count = 0;
-    for &key in cand.iter() {
-        let (t, i) = ((key >> 2) as u32, (key & 3) as u8);
-        let tu = t as usize;
-        if ctx.tstamp[tu] == ctx.gen {
-            continue;
+
+    /// Neither triangle of the edge has changed in this pass.
+    fn admissible(&self, ctx: &Ctx, key: u64) -> bool {
+        let (t, i) = key_edge(key);
+        if ctx.tstamp[t as usize] == ctx.gen {
+            return false;
         }
-        let nb = ctx.mesh.neighbours[tu][i as usize];
-        if nb != NONE && ctx.tstamp[nb as usize] == ctx.gen {
-            continue;
-        }
-        if let Some(plan) = split::check(ctx, t, i as usize) {
-            if ctx.params.insertion {
-                if let Some(ins) = insert::check(ctx, &plan) {
-                    insert::apply(ctx, &ins);
-                    count += 1;
-                    continue;
-                }
+        let nb = ctx.mesh.neighbours[t as usize][i];
+        nb == NONE || ctx.tstamp[nb as usize] != ctx.gen
+    }
+
+    fn unchanged(&self, _ctx: &Ctx, _key: u64) -> bool {
+        false
+    }
+
+    fn check(&mut self, ctx: &mut Ctx, key: u64, _frozen: Option<()>) -> Option<RefinePlan> {
+        let (t, i) = key_edge(key);
+        let plan = split::check(ctx, t, i)?;
+        if ctx.params.insertion {
+            if let Some(ins) = insert::check(ctx, &plan) {
+                return Some(RefinePlan::Insert(ins));
             }
-            split::apply(ctx, &plan);
-            count += 1;
+        }
+        Some(RefinePlan::Split(plan))
+    }
+
+    fn apply(&mut self, ctx: &mut Ctx, plan: RefinePlan) {
+        match plan {
+            RefinePlan::Split(p) => {
+                split::apply(ctx, &p);
+            }
+            RefinePlan::Insert(p) => {
+                insert::apply(ctx, &p);
+            }
         }
     }
-    count
+}
+
+/// One refinement pass ([`Refine`]); returns the number of new vertices.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    run_pass(&mut Refine, ctx)
 }

@@ -168,7 +168,9 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
             };
             refuse_above(estimated, opts.max_vertices)?;
             // A guard well above the estimate, for a run that grows far past it.
-            let cap = (GROWTH_GUARD * estimated).max(GUARD_FLOOR).min(opts.max_vertices);
+            let cap = (GROWTH_GUARD * estimated)
+                .max(GUARD_FLOOR)
+                .min(opts.max_vertices);
             let (mesh, metric, u, rep, source) = adapt_shape(shape.as_ref(), domain, opts, cap)?;
             (mesh, metric, Some(u), Some(shape), rep, source, estimated)
         }

@@ -107,7 +107,9 @@ pub fn adapt_to_shape(
     opts: &ShapeAdaptOptions,
 ) -> Result<(Mesh2, Vec<f64>, AdaptReport)> {
     match shape_rounds(shape, domain, opts) {
-        Err(Error::TooLarge(_)) if opts.gradation.is_some() && opts.adapt.max_vertices.is_some() => {
+        Err(Error::TooLarge(_))
+            if opts.gradation.is_some() && opts.adapt.max_vertices.is_some() =>
+        {
             let exact = ShapeAdaptOptions {
                 gradation: None,
                 ..opts.clone()

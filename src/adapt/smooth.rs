@@ -9,6 +9,7 @@
 //! `Q_ani` of the fan decreases. The metric and fields at the new position come from the source
 //! or are interpolated in the old fan.
 
+use super::pass::{run_pass, Operator};
 use super::topo::{local, Ctx, VClass};
 use crate::geom::{barycentric, orient2d, DVec2};
 use crate::mesh::{next, prev, NONE};
@@ -118,24 +119,54 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     ctx.fan = fan;
 }
 
-/// One smoothing sweep, in vertex order, over the free vertices whose ball changed since the
-/// last sweep; each accepted move is applied at once (Gauss-Seidel: a vertex sees the moves of
-/// the vertices before it). Returns the number of moves.
-pub fn pass(ctx: &mut Ctx) -> usize {
-    let since = ctx.last_smooth;
-    ctx.new_pass();
-    ctx.last_smooth = ctx.gen;
-    let mut count = 0;
-    for v in 0..ctx.mesh.n_points() as u32 {
-        // Only vertices whose ball changed since the last smoothing pass.
-        if ctx.mesh.vert_tri[v as usize] == NONE || ctx.vmod[v as usize] < since {
-            continue;
-        }
-        ctx.load_fan(v);
-        if let Some(plan) = check_loaded(ctx, v) {
-            apply(ctx, &plan);
-            count += 1;
-        }
+/// The smoothing operator: one sweep, in vertex order, over the free vertices whose ball
+/// changed since the last sweep; each accepted move is applied at once (Gauss-Seidel: a vertex
+/// sees the moves of the vertices before it, and a vertex whose ball such a move changed is
+/// examined when its turn comes). No frozen verdicts: every check is on the current state.
+#[derive(Default)]
+pub(crate) struct Smooth {
+    /// Generation of the previous smoothing pass: only vertices modified since are examined.
+    since: u32,
+}
+
+impl Operator<Ctx<'_>> for Smooth {
+    type Site = u32;
+    type Key = u32;
+    type Frozen = ();
+    type Plan = MovePlan;
+    const SORTED: bool = false;
+
+    fn sites(&mut self, ctx: &mut Ctx) -> Vec<u32> {
+        self.since = ctx.last_smooth;
+        ctx.new_pass();
+        ctx.last_smooth = ctx.gen;
+        (0..ctx.mesh.n_points() as u32).collect()
     }
-    count
+
+    fn survey(&self, _ctx: &Ctx, v: u32, _evaluate: bool, out: &mut Vec<(u32, Option<()>)>) {
+        out.push((v, None));
+    }
+
+    /// A live vertex whose ball changed since the previous smoothing pass.
+    fn admissible(&self, ctx: &Ctx, v: u32) -> bool {
+        ctx.mesh.vert_tri[v as usize] != NONE && ctx.vmod[v as usize] >= self.since
+    }
+
+    fn unchanged(&self, _ctx: &Ctx, _v: u32) -> bool {
+        false
+    }
+
+    fn check(&mut self, ctx: &mut Ctx, v: u32, _frozen: Option<()>) -> Option<MovePlan> {
+        ctx.load_fan(v);
+        check_loaded(ctx, v)
+    }
+
+    fn apply(&mut self, ctx: &mut Ctx, plan: MovePlan) {
+        apply(ctx, &plan);
+    }
+}
+
+/// One smoothing sweep ([`Smooth`]); returns the number of moves.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    run_pass(&mut Smooth::default(), ctx)
 }

@@ -12,14 +12,6 @@ use crate::metric::length::geometric_mean_length;
 use crate::metric::Sym2;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
-/// Whether a pass over `n` candidates should evaluate its checks in parallel first: with more
-/// than one rayon thread and enough work. The passes use the parallel results only where the
-/// sequential check would see the same state, so the outcome does not depend on this choice.
-#[inline]
-pub(crate) fn parallel_worth(n: usize) -> bool {
-    n >= 4096 && rayon::current_num_threads() > 1
-}
-
 /// Parameters the operators read (copied from [`super::AdaptOptions`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct OpParams {

@@ -21,10 +21,9 @@ fn split_every_long_edge_keeps_mesh_valid_area_and_labels() {
         l
     };
     let mut ctx = Ctx::new(&mut mesh, &mut metric, &mut u, None, params());
-    let mut cand = Vec::new();
     let mut total = 0;
     for _ in 0..20 {
-        let n = refine::pass(&mut ctx, &mut cand);
+        let n = refine::pass(&mut ctx);
         ctx.mesh.check().unwrap();
         total += n;
         if n == 0 {

@@ -35,9 +35,9 @@ fn cached_qualities_are_exact() {
         if exact {
             ctx = ctx.exact_quality();
         }
-        let (mut cand, mut ops) = (Vec::new(), 0);
+        let mut ops = 0;
         for round in 0..12 {
-            ops += refine::pass(&mut ctx, &mut cand) + flip::pass(&mut ctx);
+            ops += refine::pass(&mut ctx) + flip::pass(&mut ctx);
             if round % 3 == 2 {
                 ops += collapse::pass(&mut ctx) + smooth::pass(&mut ctx);
                 ctx.renumber_spatially();
