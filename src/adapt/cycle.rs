@@ -9,8 +9,10 @@ use crate::error::{Error, Result};
 use std::time::Instant;
 
 /// A mesh with its metric, fields and operators, as the cycle drives it: one pass of each kind,
-/// the housekeeping between passes, and the invariant check. A triangle context implements it
-/// with the passes of `refine.rs`, `collapse.rs`, `flip.rs` and `smooth.rs`.
+/// the housekeeping between passes, and the invariant check. The triangle context
+/// (`tri::Ctx`) implements it with its refinement, collapse, flip and smoothing operators, each
+/// run by [`super::pass::run_pass`]; a tetrahedral context implements it the same way with its
+/// own operators (face and edge swaps in the place of flips).
 pub(crate) trait Remesher {
     /// The number of vertex slots (live and removed vertices until the next compaction).
     fn n_vertices(&self) -> usize;

@@ -1,13 +1,14 @@
-//! The adaptation driver (004 §3.5, MMG `mmg2d1.c` style): split/collapse cycles until the edge
-//! lengths are in `[l_min, l_max]` or a cycle cap is reached, each followed by flips and one
-//! smoothing sweep ([`CycleSmoothing`]), then a few final flip/smooth sweeps. Compacts the mesh at the end and remaps the
-//! metric and the fields.
+//! The adaptation driver of triangle meshes (004 §3.5): [`adapt`] with its options
+//! ([`AdaptOptions`]) and report ([`AdaptReport`]). It validates the inputs, runs the
+//! split/collapse cycles of `cycle.rs` on the triangle context (until the edge lengths are in
+//! `[l_min, l_max]` or a cycle cap is reached, each cycle followed by flips and one smoothing
+//! sweep, [`CycleSmoothing`]; then a few final flip/smooth sweeps), and compacts the mesh at the
+//! end, remapping the metric and the fields.
 
-use super::cycle::{run_cycles, Remesher};
+use super::cycle::run_cycles;
+use super::params::{MetricInterpolation, OpParams};
 use super::sources::MetricSource;
-use super::topo::{Ctx, MetricInterpolation, OpParams};
-use super::workspace::scatter;
-use super::{collapse, flip, refine, smooth};
+use super::tri::{compact_with_data, Ctx};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh2, NONE};
 use crate::metric::Sym2;
@@ -326,75 +327,4 @@ pub fn adapt(
     }
     rep.seconds = t0.elapsed().as_secs_f64();
     Ok(rep)
-}
-
-impl Remesher for Ctx<'_> {
-    fn n_vertices(&self) -> usize {
-        self.mesh.n_points()
-    }
-
-    fn run_pass(&mut self, kind: PassKind) -> usize {
-        match kind {
-            PassKind::Split => refine::pass(self),
-            PassKind::Collapse => collapse::pass(self),
-            PassKind::Flip => flip::pass(self),
-            PassKind::Smooth => smooth::pass(self),
-        }
-    }
-
-    fn renumber(&mut self) {
-        self.renumber_spatially();
-    }
-
-    fn grade(&mut self, beta: f64) -> Result<()> {
-        grade_metric(self, beta)
-    }
-
-    fn smoothing_settled(&mut self) {
-        Ctx::smoothing_settled(self);
-    }
-
-    fn check(&self) -> Result<()> {
-        self.mesh.check()
-    }
-}
-
-/// Grades the vertex metric over the current mesh ([`crate::metric::gradate`]) and marks the
-/// triangles around every vertex whose metric changed as modified, so that the passes examine
-/// them again (cached qualities forgotten, edges re-measured).
-fn grade_metric(ctx: &mut Ctx, beta: f64) -> Result<()> {
-    let before = ctx.metric.clone();
-    if crate::metric::gradate(ctx.mesh, ctx.metric, beta)? == 0 {
-        return Ok(());
-    }
-    let changed: Vec<bool> = before
-        .iter()
-        .zip(ctx.metric.iter())
-        .map(|(a, b)| a != b)
-        .collect();
-    if !ctx.fast_q {
-        for (v, &c) in changed.iter().enumerate() {
-            if c {
-                ctx.logm[v] = ctx.metric[v].log();
-            }
-        }
-    }
-    ctx.new_pass();
-    for t in 0..ctx.mesh.n_tris() {
-        let tri = ctx.mesh.tris[t];
-        if tri[0] != NONE && tri.iter().any(|&v| changed[v as usize]) {
-            ctx.touch(t as u32);
-        }
-    }
-    Ok(())
-}
-
-/// `Mesh2::compact` plus the same renumbering of the metric and the fields.
-pub(crate) fn compact_with_data(mesh: &mut Mesh2, metric: &mut Vec<Sym2>, fields: &mut [Vec<f64>]) {
-    let vmap = mesh.compact();
-    let n = mesh.n_points();
-    *metric = scatter(metric, &vmap, n, Sym2::IDENTITY);
-    for f in fields.iter_mut() {
-        *f = scatter(f, &vmap, n, 0.0);
-    }
 }

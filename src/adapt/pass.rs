@@ -101,14 +101,14 @@ where
                 .flat_map_iter(|v| v),
         );
         if O::SORTED {
-            cand.par_sort_unstable_by(|x, y| x.0.cmp(&y.0));
+            cand.par_sort_unstable_by_key(|x| x.0);
         }
     } else {
         for &s in &sites {
             op.survey(ctx, s, false, &mut cand);
         }
         if O::SORTED {
-            cand.sort_unstable_by(|x, y| x.0.cmp(&y.0));
+            cand.sort_unstable_by_key(|x| x.0);
         }
     }
     let mut count = 0;

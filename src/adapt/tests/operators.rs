@@ -2,8 +2,10 @@
 //! labels and corners preserved, areas preserved by split/flip/collapse on straight boundaries.
 
 use super::{aniso, params, rel, square};
-use crate::adapt::topo::{Ctx, MetricInterpolation};
-use crate::adapt::{collapse, flip, insert, refine, smooth, split, NoSource};
+use crate::adapt::params::MetricInterpolation;
+use crate::adapt::tri::Ctx;
+use crate::adapt::tri::{collapse, flip, insert, refine, smooth, split};
+use crate::adapt::NoSource;
 use crate::geom::DVec2;
 use crate::mesh::{GridPattern, Mesh2, NONE};
 use crate::metric::Sym2;

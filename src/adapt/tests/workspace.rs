@@ -1,7 +1,8 @@
 //! The operator workspace: cached qualities stay exact through the passes and renumberings.
 
-use crate::adapt::topo::{Ctx, MetricInterpolation, OpParams};
-use crate::adapt::{collapse, flip, refine, smooth};
+use crate::adapt::params::{MetricInterpolation, OpParams};
+use crate::adapt::tri::Ctx;
+use crate::adapt::tri::{collapse, flip, refine, smooth};
 use crate::geom::DVec2;
 use crate::mesh::{GridPattern, Mesh2};
 use crate::metric::Sym2;

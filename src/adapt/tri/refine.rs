@@ -3,9 +3,9 @@
 //! insertion kernel (`insert.rs`), which both plan from the same [`split::SplitPlan`].
 
 use super::insert::{self, InsertPlan};
-use super::pass::{run_pass, Operator};
 use super::split::{self, SplitPlan};
 use super::topo::Ctx;
+use crate::adapt::pass::{run_pass, Operator};
 use crate::mesh::{next, prev, NONE};
 
 /// Sort key of a split candidate: longest first by classes of a quarter octave (edges of

@@ -3,8 +3,8 @@
 //! edges are never flipped, so curves and sub-domain labels are preserved; the area is preserved
 //! exactly (same quadrilateral).
 
-use super::pass::{run_pass, Operator};
 use super::topo::Ctx;
+use crate::adapt::pass::{run_pass, Operator};
 use crate::geom::orient2d;
 use crate::mesh::{next, prev, NONE};
 use crate::metric::Sym2;

@@ -4,47 +4,14 @@
 //! vertex class (free, on a labelled curve, fixed).
 
 use super::kernel;
-use super::sources::MetricSource;
 use super::workspace::unknown_qualities;
+use crate::adapt::params::{MetricInterpolation, OpParams};
+use crate::adapt::sources::MetricSource;
 use crate::geom::DVec2;
 use crate::mesh::{next, prev, Mesh2, NONE};
 use crate::metric::length::geometric_mean_length;
 use crate::metric::Sym2;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
-
-/// Parameters the operators read (copied from [`super::AdaptOptions`]).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct OpParams {
-    /// Edges shorter than this (metric length) are collapsed.
-    pub l_min: f64,
-    /// Edges longer than this are split.
-    pub l_max: f64,
-    /// Quality floor: an operation may not create a triangle with `Q_ani` above this unless the
-    /// triangles it replaces were already worse.
-    pub q_max: f64,
-    /// Distance a collapsing curve vertex may lie off the segment that replaces its two curve
-    /// edges (twice the area it removes, per unit length). 0: only exactly collinear vertices
-    /// of a boundary or interface curve are removed.
-    pub curve_tol: f64,
-    /// Insert new vertices with the anisotropic Delaunay kernel (`insert.rs`) where possible
-    /// instead of plain edge splits.
-    pub insertion: bool,
-    /// How the metric at a new or moved vertex is interpolated when no source provides it.
-    pub interpolation: MetricInterpolation,
-}
-
-/// Interpolation of the vertex metric at new or moved vertices (when the metric source has
-/// none: a metric read from a file, or given only at the input vertices).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
-pub enum MetricInterpolation {
-    /// Log-Euclidean mean ([`crate::metric::interpolate_log`]): sizes vary geometrically.
-    #[default]
-    LogEuclidean,
-    /// Sizes vary linearly in the simultaneous-reduction basis ([`crate::metric::lerp_sizes`],
-    /// the rule of MMG's `interpmet22`): between a fine and a coarse metric the sizes grow much
-    /// faster, so a metric known only on a coarse background yields far fewer vertices.
-    LinearSizes,
-}
 
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
 /// and the two neighbours on the curve), or nowhere (`Fixed`: corner, required, junction).
@@ -56,7 +23,7 @@ pub(crate) enum VClass {
 }
 
 /// Operator context over borrowed mesh data: what the operators (`refine::pass`,
-/// `collapse::pass`, ...) read and change. [`super::adapt`] builds one per run.
+/// `collapse::pass`, ...) read and change. [`crate::adapt::adapt`] builds one per run.
 pub(crate) struct Ctx<'a> {
     pub mesh: &'a mut Mesh2,
     pub metric: &'a mut Vec<Sym2>,

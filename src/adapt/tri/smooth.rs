@@ -9,8 +9,8 @@
 //! `Q_ani` of the fan decreases. The metric and fields at the new position come from the source
 //! or are interpolated in the old fan.
 
-use super::pass::{run_pass, Operator};
 use super::topo::{local, Ctx, VClass};
+use crate::adapt::pass::{run_pass, Operator};
 use crate::geom::{barycentric, orient2d, DVec2};
 use crate::mesh::{next, prev, NONE};
 use crate::metric::Sym2;

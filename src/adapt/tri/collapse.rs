@@ -8,8 +8,8 @@
 //! invert (exact `orient2d`); a new edge would be longer than `l_max`; or the worst `Q_ani` of the
 //! ball would exceed the floor and be worse than before.
 
-use super::pass::{run_pass, Operator};
 use super::topo::{local, Ctx, VClass};
+use crate::adapt::pass::{run_pass, Operator};
 use crate::mesh::{next, prev, NONE};
 use crate::metric::Sym2;
 
