@@ -62,8 +62,10 @@ pub(crate) trait Operator<C> {
     fn admissible(&self, ctx: &C, key: Self::Key) -> bool;
 
     /// Whether the surroundings of `key` are unchanged since the start of the pass, so that its
-    /// frozen verdict still holds.
-    fn unchanged(&self, ctx: &C, key: Self::Key) -> bool;
+    /// frozen verdict still holds (by default never: for operators without frozen verdicts).
+    fn unchanged(&self, _ctx: &C, _key: Self::Key) -> bool {
+        false
+    }
 
     /// The plan for `key` on the current state; `frozen` is the verdict of the survey when it
     /// still holds.

@@ -16,7 +16,9 @@ use crate::metric::Sym2;
 /// A planned collapse of vertex `a` onto its neighbour `b`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CollapsePlan {
+    /// The vertex removed.
     pub a: u32,
+    /// The vertex it merges into (the other end of the short edge).
     pub b: u32,
 }
 
@@ -130,7 +132,7 @@ pub fn check(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     check_loaded(ctx, a, b)
 }
 
-/// Applies a collapse planned by [`check`] ([`crate::mesh::TriMesh::collapse_edge`]; the fan of
+/// Applies a collapse planned by [`check_loaded`] ([`crate::mesh::TriMesh::collapse_edge`]; the fan of
 /// `a` must still be in `ctx.fan`).
 pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
     let fan = std::mem::take(&mut ctx.fan);

@@ -15,7 +15,9 @@ const GAIN: f64 = 0.99;
 /// A planned flip of local edge `i` of triangle `t`, made by [`check`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlipPlan {
+    /// A triangle holding the edge.
     pub t: u32,
+    /// The local index of the edge in `t` (the edge opposite vertex `i`).
     pub i: u8,
     /// The qualities of the two new triangles when `check` computed them (`apply` caches them).
     pub(crate) q: Option<[f64; 2]>,

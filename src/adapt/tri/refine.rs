@@ -87,10 +87,6 @@ impl Operator<Ctx<'_>> for Refine {
         nb == NONE || ctx.tstamp[nb as usize] != ctx.gen
     }
 
-    fn unchanged(&self, _ctx: &Ctx, _key: u64) -> bool {
-        false
-    }
-
     fn check(&mut self, ctx: &mut Ctx, key: u64, _frozen: Option<()>) -> Option<RefinePlan> {
         let (t, i) = key_edge(key);
         let plan = split::check(ctx, t, i)?;

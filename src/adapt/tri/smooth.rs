@@ -21,7 +21,9 @@ const GAIN: f64 = 0.999;
 /// A planned move of vertex `v` to `p`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MovePlan {
+    /// The vertex moved.
     pub v: u32,
+    /// Its new position.
     pub p: DVec2,
 }
 
@@ -150,10 +152,6 @@ impl Operator<Ctx<'_>> for Smooth {
     /// A live vertex whose ball changed since the previous smoothing pass.
     fn admissible(&self, ctx: &Ctx, v: u32) -> bool {
         ctx.mesh.vert_tri[v as usize] != NONE && ctx.vmod[v as usize] >= self.since
-    }
-
-    fn unchanged(&self, _ctx: &Ctx, _v: u32) -> bool {
-        false
     }
 
     fn check(&mut self, ctx: &mut Ctx, v: u32, _frozen: Option<()>) -> Option<MovePlan> {
