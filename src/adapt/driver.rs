@@ -1,12 +1,14 @@
-//! The adaptation driver (004 §3.5, MMG `mmg2d1.c` style): split/collapse cycles until the edge
-//! lengths are in `[l_min, l_max]` or a cycle cap is reached, each followed by flips and one
-//! smoothing sweep ([`CycleSmoothing`]), then a few final flip/smooth sweeps. Compacts the mesh at the end and remaps the
-//! metric and the fields.
+//! The adaptation driver of triangle meshes (004 §3.5): [`adapt`] with its options
+//! ([`AdaptOptions`]) and report ([`AdaptReport`]). It validates the inputs, runs the
+//! split/collapse cycles of `cycle.rs` on the triangle context (until the edge lengths are in
+//! `[l_min, l_max]` or a cycle cap is reached, each cycle followed by flips and one smoothing
+//! sweep, [`CycleSmoothing`]; then a few final flip/smooth sweeps), and compacts the mesh at the
+//! end, remapping the metric and the fields.
 
+use super::cycle::run_cycles;
+use super::params::{MetricInterpolation, OpParams};
 use super::sources::MetricSource;
-use super::topo::{Ctx, MetricInterpolation, OpParams};
-use super::workspace::scatter;
-use super::{collapse, flip, refine, smooth};
+use super::tri::{compact_with_data, Ctx};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh2, NONE};
 use crate::metric::Sym2;
@@ -314,145 +316,15 @@ pub fn adapt(
         interpolation: opts.interpolation,
     };
     let mut rep = AdaptReport::default();
-    {
-        let mut ctx = Ctx::new(mesh, metric, fields, source, params);
-        let mut cand = Vec::new();
-        let mut run = |ctx: &mut Ctx, kind: PassKind, rep: &mut AdaptReport| -> Result<usize> {
-            let t = Instant::now();
-            let n = match kind {
-                PassKind::Split => refine::pass(ctx, &mut cand),
-                PassKind::Collapse => collapse::pass(ctx),
-                PassKind::Flip => flip::pass(ctx),
-                PassKind::Smooth => smooth::pass(ctx),
-            };
-            match kind {
-                PassKind::Split => rep.splits += n,
-                PassKind::Collapse => rep.collapses += n,
-                PassKind::Flip => rep.flips += n,
-                PassKind::Smooth => rep.moves += n,
-            }
-            rep.passes.push(PassReport {
-                kind,
-                count: n,
-                seconds: t.elapsed().as_secs_f64(),
-            });
-            if opts.check_each_pass {
-                ctx.mesh.check()?;
-            }
-            Ok(n)
-        };
-        // Spatial renumbering keeps fan walks cache-friendly as the mesh grows: whenever splits
-        // have grown the vertex count by 30% since the last one, and at the start of a cycle when
-        // they have added 10%. (On the eps 1e-5 speed case, growth steps of 50% instead of 30%
-        // made the adaptation about 10% slower; 20% gained nothing more.)
-        let mut renumbered_at = 0;
-        let mut last_ops = None;
-        let mut graded_at: Option<usize> = None;
-        for _cycle in 0..opts.max_cycles {
-            rep.cycles += 1;
-            // Grade when the mesh has grown by 10% since the last grading: a new vertex gets a
-            // metric interpolated from already graded neighbours, so later cycles rarely change
-            // a metric, and a grading costs as much as a cycle.
-            if let Some(beta) = opts.gradation {
-                let n = ctx.mesh.n_points();
-                if graded_at.map_or(true, |g| 10 * n >= 11 * g) {
-                    let t = Instant::now();
-                    grade_metric(&mut ctx, beta)?;
-                    rep.gradation_seconds += t.elapsed().as_secs_f64();
-                    graded_at = Some(n);
-                }
-            }
-            let mut ns = 0;
-            for _ in 0..64 {
-                let n = ctx.mesh.n_points();
-                if 10 * n >= 13 * renumbered_at.max(1) || (ns == 0 && 10 * n >= 11 * renumbered_at)
-                {
-                    ctx.renumber_spatially();
-                    renumbered_at = ctx.mesh.n_points();
-                }
-                let n = run(&mut ctx, PassKind::Split, &mut rep)?;
-                ns += n;
-                if let Some(limit) = opts.max_vertices.filter(|&l| ctx.mesh.n_points() > l) {
-                    return Err(Error::TooLarge(format!(
-                        "the adaptation grew past {limit} vertices ({} after a refinement pass)",
-                        ctx.mesh.n_points()
-                    )));
-                }
-                if n == 0 {
-                    break;
-                }
-                run(&mut ctx, PassKind::Flip, &mut rep)?;
-            }
-            let nc = run(&mut ctx, PassKind::Collapse, &mut rep)?;
-            run(&mut ctx, PassKind::Flip, &mut rep)?;
-            run(&mut ctx, PassKind::Smooth, &mut rep)?;
-            if opts.cycle_smoothing == CycleSmoothing::Touched {
-                ctx.smoothing_settled();
-            }
-            // Converged: the cycle changed (almost) nothing — at most 1 in 2,000 vertices — or
-            // it made as many splits as collapses, at most 8 of each, and the same numbers as the
-            // previous cycle: a split/collapse limit cycle (seen next to a labelled kink edge
-            // between required vertices) that more cycles would only repeat.
-            let nv = ctx.mesh.n_points();
-            let repeated = last_ops == Some((ns, nc)) && ns == nc && ns + nc <= 16;
-            if ns + nc <= nv / 2000 || repeated {
-                rep.converged = true;
-                break;
-            }
-            last_ops = Some((ns, nc));
-        }
-        for _ in 0..opts.final_sweeps {
-            let nf = run(&mut ctx, PassKind::Flip, &mut rep)?;
-            let nm = run(&mut ctx, PassKind::Smooth, &mut rep)?;
-            if nf + nm == 0 {
-                break;
-            }
-        }
-    }
+    run_cycles(
+        &mut Ctx::new(mesh, metric, fields, source, params),
+        opts,
+        &mut rep,
+    )?;
     compact_with_data(mesh, metric, fields);
     if opts.check_each_pass {
         mesh.check()?;
     }
     rep.seconds = t0.elapsed().as_secs_f64();
     Ok(rep)
-}
-
-/// Grades the vertex metric over the current mesh ([`crate::metric::gradate`]) and marks the
-/// triangles around every vertex whose metric changed as modified, so that the passes examine
-/// them again (cached qualities forgotten, edges re-measured).
-fn grade_metric(ctx: &mut Ctx, beta: f64) -> Result<()> {
-    let before = ctx.metric.clone();
-    if crate::metric::gradate(ctx.mesh, ctx.metric, beta)? == 0 {
-        return Ok(());
-    }
-    let changed: Vec<bool> = before
-        .iter()
-        .zip(ctx.metric.iter())
-        .map(|(a, b)| a != b)
-        .collect();
-    if !ctx.fast_q {
-        for (v, &c) in changed.iter().enumerate() {
-            if c {
-                ctx.logm[v] = ctx.metric[v].log();
-            }
-        }
-    }
-    ctx.new_pass();
-    for t in 0..ctx.mesh.n_tris() {
-        let tri = ctx.mesh.tris[t];
-        if tri[0] != NONE && tri.iter().any(|&v| changed[v as usize]) {
-            ctx.touch(t as u32);
-        }
-    }
-    Ok(())
-}
-
-/// `Mesh2::compact` plus the same renumbering of the metric and the fields.
-pub(crate) fn compact_with_data(mesh: &mut Mesh2, metric: &mut Vec<Sym2>, fields: &mut [Vec<f64>]) {
-    let vmap = mesh.compact();
-    let n = mesh.n_points();
-    *metric = scatter(metric, &vmap, n, Sym2::IDENTITY);
-    for f in fields.iter_mut() {
-        *f = scatter(f, &vmap, n, 0.0);
-    }
 }

@@ -1,5 +1,5 @@
 //! The size of the mesh a metric asks for, before adapting: its complexity `C = ∫ sqrt(det M)`
-//! and the vertex count `2 C / sqrt(3)` of a unit mesh ([`crate::metric::complexity`], 004 §3.3).
+//! and the vertex count `2 C / sqrt(3)` of a unit mesh ([`crate::metric::complexity()`], 004 §3.3).
 //!
 //! For a metric given on a mesh the integral is taken over that mesh. For the geometric metric
 //! of 004 eq. (6) of an exact shape the metric is known everywhere but concentrates in a band

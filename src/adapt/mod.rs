@@ -2,19 +2,18 @@
 //! insertion on [`crate::mesh::Mesh2`] (004 §3.5), the driver that alternates them, metric
 //! sources (004 eq. (6), multiscale Lp) and the shape-capturing loop.
 //!
-//! Layout (one concept per file, MMG/Omega_h style):
-//! - `topo.rs`: the operator context (mesh, metric, fields, source, parameters), its metric and
-//!   quality queries and the vertex classes (free / on a labelled curve / fixed);
-//!   `workspace.rs`: the per-pass workspace, which hears the mesh edits through
-//!   [`crate::mesh::EditListener`].
-//! - `kernel.rs`: the metric quantities the operators evaluate (edge length, `Q_ani`), thin
-//!   wrappers over [`crate::metric`].
-//! - `split.rs`, `insert.rs`, `collapse.rs`, `flip.rs`, `smooth.rs`: one operator each, with a
-//!   pure `check` that returns the planned change from metric and quality, and an `apply` that
-//!   calls the topology edits of [`crate::mesh`] (split edge, fill cavity, collapse edge, flip
-//!   edge, move vertex). `refine.rs` is the pass that picks long edges and chooses between a
-//!   split and an insertion; collapse, flip and smooth have their own `pass`. Each pass returns
-//!   a count.
+//! Layout (one concept per file, MMG/Omega_h style), dimension-free first:
+//! - `pass.rs`: the pass skeleton every operator shares (sites, survey on the state at the
+//!   start of the pass, in parallel when worth it, order, visit: independent set, re-check where
+//!   the surroundings changed, apply, count) and the `Operator` trait an operator implements.
+//! - `cycle.rs`: the adaptation cycle (refine and flip until no split, collapse, flip, smooth,
+//!   convergence test, final sweeps, renumbering, gradation), written against the `Remesher`
+//!   trait a mesh context of any dimension implements; `params.rs`: the operator parameters.
+//! - `tri/`: the triangle operators on [`crate::mesh::Mesh2`]: the context and its workspace
+//!   (`topo.rs`, `workspace.rs`, `kernel.rs`) and one file per operator (`split.rs`,
+//!   `insert.rs`, `refine.rs`, `collapse.rs`, `flip.rs`, `smooth.rs`), each with a pure
+//!   `check` that returns the planned change from metric and quality and an `apply` that calls
+//!   the topology edits of [`crate::mesh`].
 //! - `driver.rs`: [`adapt`], [`AdaptOptions`], [`AdaptReport`].
 //! - `sources.rs`: [`MetricSource`] implementations and metric fields from level sets/Hessians.
 //! - `shape.rs`: [`adapt_to_shape`]; `report.rs`: [`MeshReport`].
@@ -35,16 +34,10 @@
 //! triangles are tombstones until [`crate::mesh::TriMesh::compact`] (the driver compacts at the
 //! end, remapping the metric and the fields).
 
-mod kernel;
-mod topo;
-mod workspace;
-
-mod collapse;
-mod flip;
-mod insert;
-mod refine;
-mod smooth;
-mod split;
+mod cycle;
+mod params;
+mod pass;
+mod tri;
 
 mod driver;
 pub mod estimate;
@@ -57,13 +50,13 @@ pub mod sources;
 pub use driver::{
     adapt, validate_inputs, AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport,
 };
+pub use params::MetricInterpolation;
 pub use report::{mesh_report, MeshReport};
 pub use run::{
     metric_file_options, run, AdaptTarget, Adapted, RunOptions, RunReport, DEFAULT_MAX_VERTICES,
 };
 pub use shape::{adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
-pub use topo::MetricInterpolation;
 
 #[cfg(test)]
 mod tests;

@@ -36,7 +36,7 @@ impl MetricSource for NoSource {
 
 /// The geometric level-set metric of 004 eq. (6), `M = ∇u ∇uᵀ / hmin² + |D²u| / ε`, applied in
 /// the band `|u| < band` around the zero level and bounded by `hmin`, `hmax`, `max_aniso`
-/// ([`metric::MetricBounds`]). Outside the band the sizes of the band metric grow linearly with
+/// ([`crate::metric::MetricBounds`]). Outside the band the sizes of the band metric grow linearly with
 /// the distance, `h ← min(hmax, h + grade (|u| - band))` (an analytic gradation that keeps the
 /// field continuous and can be re-evaluated anywhere; `grade = inf` gives the plain "hmax
 /// outside the band" rule). `isotropic` replaces the metric by `λ_max I` (the smallest size of

@@ -1,7 +1,7 @@
 //! Unit tests of the adaptation operators and their workspace, driving single operators through
 //! a `Ctx`, with `check()` after every operation.
 
-use super::topo::{MetricInterpolation, OpParams};
+use super::params::{MetricInterpolation, OpParams};
 use crate::geom::DVec2;
 use crate::mesh::{GridPattern, Mesh2};
 use crate::metric::Sym2;

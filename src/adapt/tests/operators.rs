@@ -2,8 +2,10 @@
 //! labels and corners preserved, areas preserved by split/flip/collapse on straight boundaries.
 
 use super::{aniso, params, rel, square};
-use crate::adapt::topo::{Ctx, MetricInterpolation};
-use crate::adapt::{collapse, flip, insert, refine, smooth, split, NoSource};
+use crate::adapt::params::MetricInterpolation;
+use crate::adapt::tri::Ctx;
+use crate::adapt::tri::{collapse, flip, insert, refine, smooth, split};
+use crate::adapt::NoSource;
 use crate::geom::DVec2;
 use crate::mesh::{GridPattern, Mesh2, NONE};
 use crate::metric::Sym2;
@@ -21,10 +23,9 @@ fn split_every_long_edge_keeps_mesh_valid_area_and_labels() {
         l
     };
     let mut ctx = Ctx::new(&mut mesh, &mut metric, &mut u, None, params());
-    let mut cand = Vec::new();
     let mut total = 0;
     for _ in 0..20 {
-        let n = refine::pass(&mut ctx, &mut cand);
+        let n = refine::pass(&mut ctx);
         ctx.mesh.check().unwrap();
         total += n;
         if n == 0 {

@@ -1,7 +1,8 @@
 //! The operator workspace: cached qualities stay exact through the passes and renumberings.
 
-use crate::adapt::topo::{Ctx, MetricInterpolation, OpParams};
-use crate::adapt::{collapse, flip, refine, smooth};
+use crate::adapt::params::{MetricInterpolation, OpParams};
+use crate::adapt::tri::Ctx;
+use crate::adapt::tri::{collapse, flip, refine, smooth};
 use crate::geom::DVec2;
 use crate::mesh::{GridPattern, Mesh2};
 use crate::metric::Sym2;
@@ -35,9 +36,9 @@ fn cached_qualities_are_exact() {
         if exact {
             ctx = ctx.exact_quality();
         }
-        let (mut cand, mut ops) = (Vec::new(), 0);
+        let mut ops = 0;
         for round in 0..12 {
-            ops += refine::pass(&mut ctx, &mut cand) + flip::pass(&mut ctx);
+            ops += refine::pass(&mut ctx) + flip::pass(&mut ctx);
             if round % 3 == 2 {
                 ops += collapse::pass(&mut ctx) + smooth::pass(&mut ctx);
                 ctx.renumber_spatially();

@@ -8,15 +8,17 @@
 //! invert (exact `orient2d`); a new edge would be longer than `l_max`; or the worst `Q_ani` of the
 //! ball would exceed the floor and be worse than before.
 
-use super::topo::{local, parallel_worth, Ctx, VClass};
+use super::topo::{local, Ctx, VClass};
+use crate::adapt::pass::{run_pass, Operator};
 use crate::mesh::{next, prev, NONE};
 use crate::metric::Sym2;
-use rayon::prelude::*;
 
 /// A planned collapse of vertex `a` onto its neighbour `b`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CollapsePlan {
+    /// The vertex removed.
     pub a: u32,
+    /// The vertex it merges into (the other end of the short edge).
     pub b: u32,
 }
 
@@ -130,7 +132,7 @@ pub fn check(ctx: &mut Ctx, a: u32, b: u32) -> Option<CollapsePlan> {
     check_loaded(ctx, a, b)
 }
 
-/// Applies a collapse planned by [`check`] ([`crate::mesh::TriMesh::collapse_edge`]; the fan of
+/// Applies a collapse planned by [`check_loaded`] ([`crate::mesh::TriMesh::collapse_edge`]; the fan of
 /// `a` must still be in `ctx.fan`).
 pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
     let fan = std::mem::take(&mut ctx.fan);
@@ -139,46 +141,69 @@ pub fn apply(ctx: &mut Ctx, plan: &CollapsePlan) {
     ctx.fan = fan;
 }
 
-/// One collapse pass over the vertices whose ball changed since the last collapse pass: each vertex with an edge shorter than `l_min` is
-/// collapsed onto the end of its shortest such edge that passes the check (trying the others in
-/// order of length). A vertex that received a collapse is not collapsed again in the same pass.
-/// Returns the number of collapses.
-pub fn pass(ctx: &mut Ctx) -> usize {
-    let since = ctx.last_collapse;
-    ctx.new_pass();
-    ctx.last_collapse = ctx.gen;
-    let nv = ctx.mesh.n_points();
-    let l_min = ctx.params.l_min;
-    let gen = ctx.gen;
-    let candidate = |ctx: &Ctx, au: usize| {
-        ctx.vmod[au] >= since
+/// The collapse operator: one pass over the vertices whose ball changed since the last collapse
+/// pass, in vertex order. Each vertex with an edge shorter than `l_min` is collapsed onto the
+/// end of its shortest such edge that passes the check (trying the others in order of length).
+/// A vertex that received a collapse is not collapsed again in the same pass. With several
+/// threads, which vertices have a short edge is first found on the state at the start of the
+/// pass; the pass trusts a "no short edge" verdict only while the vertex's ball is unchanged
+/// (`vmod`), so the collapses are the same for any number of threads.
+#[derive(Default)]
+pub(crate) struct Collapse {
+    /// Generation of the previous collapse pass: only vertices modified since are examined.
+    since: u32,
+    /// The short edges of the vertex being checked: `(length, other end)`.
+    short: Vec<(f64, u32)>,
+}
+
+impl Collapse {
+    /// Whether `a` is a live vertex that may be removed and whose ball changed since the
+    /// previous collapse pass.
+    #[inline]
+    fn candidate(&self, ctx: &Ctx, au: usize) -> bool {
+        ctx.vmod[au] >= self.since
             && ctx.mesh.vert_tri[au] != NONE
             && !ctx.mesh.corner[au]
             && !ctx.mesh.required[au]
-    };
-    // With several threads, which vertices have a short edge is first found in parallel; the
-    // pass trusts a "no short edge" answer only while the vertex's ball is unchanged (`vmod`),
-    // so the collapses are the same for any number of threads.
-    let pre: Option<Vec<bool>> = parallel_worth(nv).then(|| {
-        let c: &Ctx = ctx;
-        (0..nv)
-            .into_par_iter()
-            .map(|au| candidate(c, au) && has_short_edge(c, au as u32, l_min))
-            .collect()
-    });
-    let mut count = 0;
-    let mut short: Vec<(f64, u32)> = Vec::with_capacity(16);
-    for a in 0..nv as u32 {
-        let au = a as usize;
-        if ctx.vstamp[au] == gen || !candidate(ctx, au) {
-            continue;
+    }
+}
+
+impl Operator<Ctx<'_>> for Collapse {
+    type Site = u32;
+    type Key = u32;
+    type Frozen = bool;
+    type Plan = CollapsePlan;
+    const SORTED: bool = false;
+
+    fn sites(&mut self, ctx: &mut Ctx) -> Vec<u32> {
+        self.since = ctx.last_collapse;
+        ctx.new_pass();
+        ctx.last_collapse = ctx.gen;
+        (0..ctx.mesh.n_points() as u32).collect()
+    }
+
+    fn survey(&self, c: &Ctx, a: u32, evaluate: bool, out: &mut Vec<(u32, Option<bool>)>) {
+        let frozen =
+            evaluate.then(|| self.candidate(c, a as usize) && has_short_edge(c, a, c.params.l_min));
+        out.push((a, frozen));
+    }
+
+    /// Not the target of a collapse in this pass, and still a candidate.
+    fn admissible(&self, ctx: &Ctx, a: u32) -> bool {
+        ctx.vstamp[a as usize] != ctx.gen && self.candidate(ctx, a as usize)
+    }
+
+    fn unchanged(&self, ctx: &Ctx, a: u32) -> bool {
+        ctx.vmod[a as usize] != ctx.gen
+    }
+
+    fn check(&mut self, ctx: &mut Ctx, a: u32, frozen: Option<bool>) -> Option<CollapsePlan> {
+        if frozen == Some(false) {
+            return None;
         }
-        if let Some(pre) = &pre {
-            if !pre[au] && ctx.vmod[au] != gen {
-                continue;
-            }
-        }
+        let l_min = ctx.params.l_min;
         ctx.load_fan(a);
+        let short = &mut self.short;
         short.clear();
         for k in 0..ctx.fan.len() {
             let tri = ctx.mesh.tris[ctx.fan[k] as usize];
@@ -199,20 +224,20 @@ pub fn pass(ctx: &mut Ctx) -> usize {
                 }
             }
         }
-        if short.is_empty() {
-            continue;
-        }
         short.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
-        for &(_, b) in short.iter() {
-            if let Some(plan) = check_loaded(ctx, a, b) {
-                apply(ctx, &plan);
-                ctx.vstamp[b as usize] = gen;
-                count += 1;
-                break;
-            }
-        }
+        short.iter().find_map(|&(_, b)| check_loaded(ctx, a, b))
     }
-    count
+
+    /// Collapses, and marks the remaining end as not to be collapsed again in this pass.
+    fn apply(&mut self, ctx: &mut Ctx, plan: CollapsePlan) {
+        apply(ctx, &plan);
+        ctx.vstamp[plan.b as usize] = ctx.gen;
+    }
+}
+
+/// One collapse pass ([`Collapse`]); returns the number of collapses.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    run_pass(&mut Collapse::default(), ctx)
 }
 
 /// Whether vertex `a` has an edge shorter than `l_min` (every edge of its ball that holds it).

@@ -11,7 +11,9 @@ use crate::mesh::{next, prev, NONE};
 /// A planned split of local edge `i` of triangle `t` at parameter `s` from its first vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SplitPlan {
+    /// A triangle holding the edge.
     pub t: u32,
+    /// The local index of the edge in `t` (the edge opposite vertex `i`).
     pub i: u8,
     /// Parameter along `a -> b` (`a = tris[t][next(i)]`).
     pub s: f64,

@@ -4,72 +4,40 @@
 //! vertex class (free, on a labelled curve, fixed).
 
 use super::kernel;
-use super::sources::MetricSource;
 use super::workspace::unknown_qualities;
+use crate::adapt::params::{MetricInterpolation, OpParams};
+use crate::adapt::sources::MetricSource;
 use crate::geom::DVec2;
 use crate::mesh::{next, prev, Mesh2, NONE};
 use crate::metric::length::geometric_mean_length;
 use crate::metric::Sym2;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
-/// Whether a pass over `n` candidates should evaluate its checks in parallel first: with more
-/// than one rayon thread and enough work. The passes use the parallel results only where the
-/// sequential check would see the same state, so the outcome does not depend on this choice.
-#[inline]
-pub(crate) fn parallel_worth(n: usize) -> bool {
-    n >= 4096 && rayon::current_num_threads() > 1
-}
-
-/// Parameters the operators read (copied from [`super::AdaptOptions`]).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct OpParams {
-    /// Edges shorter than this (metric length) are collapsed.
-    pub l_min: f64,
-    /// Edges longer than this are split.
-    pub l_max: f64,
-    /// Quality floor: an operation may not create a triangle with `Q_ani` above this unless the
-    /// triangles it replaces were already worse.
-    pub q_max: f64,
-    /// Distance a collapsing curve vertex may lie off the segment that replaces its two curve
-    /// edges (twice the area it removes, per unit length). 0: only exactly collinear vertices
-    /// of a boundary or interface curve are removed.
-    pub curve_tol: f64,
-    /// Insert new vertices with the anisotropic Delaunay kernel (`insert.rs`) where possible
-    /// instead of plain edge splits.
-    pub insertion: bool,
-    /// How the metric at a new or moved vertex is interpolated when no source provides it.
-    pub interpolation: MetricInterpolation,
-}
-
-/// Interpolation of the vertex metric at new or moved vertices (when the metric source has
-/// none: a metric read from a file, or given only at the input vertices).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
-pub enum MetricInterpolation {
-    /// Log-Euclidean mean ([`crate::metric::interpolate_log`]): sizes vary geometrically.
-    #[default]
-    LogEuclidean,
-    /// Sizes vary linearly in the simultaneous-reduction basis ([`crate::metric::lerp_sizes`],
-    /// the rule of MMG's `interpmet22`): between a fine and a coarse metric the sizes grow much
-    /// faster, so a metric known only on a coarse background yields far fewer vertices.
-    LinearSizes,
-}
-
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
 /// and the two neighbours on the curve), or nowhere (`Fixed`: corner, required, junction).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum VClass {
+    /// Interior vertex, no labelled edge: may move anywhere.
     Free,
+    /// On one labelled curve (or the boundary) with label `label`, between its two curve
+    /// neighbours `ends`.
     Curve { label: i32, ends: [u32; 2] },
+    /// Corner, required vertex or junction of curves: never moved or removed.
     Fixed,
 }
 
 /// Operator context over borrowed mesh data: what the operators (`refine::pass`,
-/// `collapse::pass`, ...) read and change. [`super::adapt`] builds one per run.
+/// `collapse::pass`, ...) read and change. [`crate::adapt::adapt`] builds one per run.
 pub(crate) struct Ctx<'a> {
+    /// The mesh being adapted.
     pub mesh: &'a mut Mesh2,
+    /// One metric tensor per vertex.
     pub metric: &'a mut Vec<Sym2>,
+    /// P1 fields carried through the operations, one value per vertex each.
     pub fields: &'a mut [Vec<f64>],
+    /// Where the metric and fields at new or moved vertices come from, when given.
     pub source: Option<&'a dyn MetricSource>,
+    /// The operator parameters.
     pub params: OpParams,
     /// Per-triangle pass stamp (a triangle touched in the current pass has `tstamp == gen`).
     pub(crate) tstamp: Vec<u32>,
@@ -82,7 +50,9 @@ pub(crate) struct Ctx<'a> {
     /// the entries logged since their previous pass (`split_pos`, `flip_pos`), so a pass costs
     /// what changed, not the mesh size.
     pub(crate) log: Vec<u32>,
+    /// Position in `log` up to which the refinement passes have examined it.
     pub(crate) split_pos: usize,
+    /// Position in `log` up to which the flip passes have examined it.
     pub(crate) flip_pos: usize,
     /// Per-triangle visit mark of the current pass (deduplicates log entries).
     pub(crate) tseen: Vec<u32>,
@@ -90,17 +60,22 @@ pub(crate) struct Ctx<'a> {
     /// operator checks compare against the current quality of unchanged triangles. Atomic so
     /// that parallel checks may fill it (every writer stores the same value).
     pub(crate) tq: Vec<AtomicU64>,
+    /// The generation of the current pass (see [`Ctx::new_pass`]).
     pub(crate) gen: u32,
     /// Logarithms of the vertex metrics (element metrics are `exp` of their mean).
     pub(crate) logm: Vec<Sym2>,
     /// Generation of the last smoothing / collapse pass: only vertices modified since are examined.
     pub(crate) last_smooth: u32,
+    /// Generation of the last collapse pass.
     pub(crate) last_collapse: u32,
     /// Use the arithmetic-mean element metric in operator decisions (faster; the default). Set
-    /// with [`Ctx::exact_quality`].
+    /// with `Ctx::exact_quality` (tests).
     pub(crate) fast_q: bool,
+    /// The counter-clockwise fan of the vertex being examined ([`Ctx::load_fan`]).
     pub(crate) fan: Vec<u32>,
+    /// The fan of the second vertex of a collapse check.
     pub(crate) fan2: Vec<u32>,
+    /// The field values at a new or moved vertex, before the edit stores them.
     pub(crate) scratch_f: Vec<f64>,
 }
 
@@ -154,11 +129,13 @@ impl<'a> Ctx<'a> {
         self
     }
 
+    /// The position of vertex `v`.
     #[inline]
     pub(crate) fn p(&self, v: u32) -> DVec2 {
         self.mesh.points[v as usize]
     }
 
+    /// The metric of vertex `v`.
     #[inline]
     pub(crate) fn m(&self, v: u32) -> &Sym2 {
         &self.metric[v as usize]
@@ -221,7 +198,7 @@ impl<'a> Ctx<'a> {
 
     /// Caches `q`, the arithmetic-mean `Q_ani` ([`kernel::q_ani_mean`]) of the live triangle `t`
     /// as it is now, when that is the quality the operators use (no effect under
-    /// [`Ctx::exact_quality`]).
+    /// `Ctx::exact_quality` (tests)).
     #[inline]
     pub(crate) fn set_fast_q(&mut self, t: u32, q: f64) {
         if self.fast_q {

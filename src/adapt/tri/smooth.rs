@@ -10,6 +10,7 @@
 //! or are interpolated in the old fan.
 
 use super::topo::{local, Ctx, VClass};
+use crate::adapt::pass::{run_pass, Operator};
 use crate::geom::{barycentric, orient2d, DVec2};
 use crate::mesh::{next, prev, NONE};
 use crate::metric::Sym2;
@@ -20,7 +21,9 @@ const GAIN: f64 = 0.999;
 /// A planned move of vertex `v` to `p`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MovePlan {
+    /// The vertex moved.
     pub v: u32,
+    /// Its new position.
     pub p: DVec2,
 }
 
@@ -118,24 +121,50 @@ pub fn apply(ctx: &mut Ctx, plan: &MovePlan) {
     ctx.fan = fan;
 }
 
-/// One smoothing sweep, in vertex order, over the free vertices whose ball changed since the
-/// last sweep; each accepted move is applied at once (Gauss-Seidel: a vertex sees the moves of
-/// the vertices before it). Returns the number of moves.
-pub fn pass(ctx: &mut Ctx) -> usize {
-    let since = ctx.last_smooth;
-    ctx.new_pass();
-    ctx.last_smooth = ctx.gen;
-    let mut count = 0;
-    for v in 0..ctx.mesh.n_points() as u32 {
-        // Only vertices whose ball changed since the last smoothing pass.
-        if ctx.mesh.vert_tri[v as usize] == NONE || ctx.vmod[v as usize] < since {
-            continue;
-        }
-        ctx.load_fan(v);
-        if let Some(plan) = check_loaded(ctx, v) {
-            apply(ctx, &plan);
-            count += 1;
-        }
+/// The smoothing operator: one sweep, in vertex order, over the free vertices whose ball
+/// changed since the last sweep; each accepted move is applied at once (Gauss-Seidel: a vertex
+/// sees the moves of the vertices before it, and a vertex whose ball such a move changed is
+/// examined when its turn comes). No frozen verdicts: every check is on the current state.
+#[derive(Default)]
+pub(crate) struct Smooth {
+    /// Generation of the previous smoothing pass: only vertices modified since are examined.
+    since: u32,
+}
+
+impl Operator<Ctx<'_>> for Smooth {
+    type Site = u32;
+    type Key = u32;
+    type Frozen = ();
+    type Plan = MovePlan;
+    const SORTED: bool = false;
+
+    fn sites(&mut self, ctx: &mut Ctx) -> Vec<u32> {
+        self.since = ctx.last_smooth;
+        ctx.new_pass();
+        ctx.last_smooth = ctx.gen;
+        (0..ctx.mesh.n_points() as u32).collect()
     }
-    count
+
+    fn survey(&self, _ctx: &Ctx, v: u32, _evaluate: bool, out: &mut Vec<(u32, Option<()>)>) {
+        out.push((v, None));
+    }
+
+    /// A live vertex whose ball changed since the previous smoothing pass.
+    fn admissible(&self, ctx: &Ctx, v: u32) -> bool {
+        ctx.mesh.vert_tri[v as usize] != NONE && ctx.vmod[v as usize] >= self.since
+    }
+
+    fn check(&mut self, ctx: &mut Ctx, v: u32, _frozen: Option<()>) -> Option<MovePlan> {
+        ctx.load_fan(v);
+        check_loaded(ctx, v)
+    }
+
+    fn apply(&mut self, ctx: &mut Ctx, plan: MovePlan) {
+        apply(ctx, &plan);
+    }
+}
+
+/// One smoothing sweep ([`Smooth`]); returns the number of moves.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    run_pass(&mut Smooth::default(), ctx)
 }

@@ -3,11 +3,11 @@
 //! edges are never flipped, so curves and sub-domain labels are preserved; the area is preserved
 //! exactly (same quadrilateral).
 
-use super::topo::{parallel_worth, Ctx};
+use super::topo::Ctx;
+use crate::adapt::pass::{run_pass, Operator};
 use crate::geom::orient2d;
 use crate::mesh::{next, prev, NONE};
 use crate::metric::Sym2;
-use rayon::prelude::*;
 
 /// Relative improvement of the worse quality a flip must bring (avoids cycling).
 const GAIN: f64 = 0.99;
@@ -15,7 +15,9 @@ const GAIN: f64 = 0.99;
 /// A planned flip of local edge `i` of triangle `t`, made by [`check`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlipPlan {
+    /// A triangle holding the edge.
     pub t: u32,
+    /// The local index of the edge in `t` (the edge opposite vertex `i`).
     pub i: u8,
     /// The qualities of the two new triangles when `check` computed them (`apply` caches them).
     pub(crate) q: Option<[f64; 2]>,
@@ -75,59 +77,76 @@ pub fn apply(ctx: &mut Ctx, plan: &FlipPlan) {
     }
 }
 
-/// One flip sweep over the interior edges next to triangles modified since the last sweep, in
-/// triangle order, each accepted flip applied at once. With several threads the checks are
-/// first evaluated in parallel on the state at the start of the sweep; the sweep then uses such
-/// a result only while neither triangle of the edge has changed, so the flips are the same for
-/// any number of threads. Returns the number of flips.
-pub fn pass(ctx: &mut Ctx) -> usize {
-    ctx.new_pass();
-    let from = ctx.flip_pos;
-    ctx.flip_pos = ctx.log.len();
-    let list = ctx.logged_since(from);
-    let gen = ctx.gen;
-    // An edge shared with a listed triangle of lower index is checked from there first.
-    let checked_before = |ctx: &Ctx, t: u32, nb: u32| nb < t && ctx.tseen[nb as usize] == gen;
-    let pre: Option<Vec<u8>> = parallel_worth(list.len()).then(|| {
-        let c: &Ctx = ctx;
-        list.par_iter()
-            .map(|&t| {
-                let mut mask = 0u8;
-                for i in 0..3 {
-                    let nb = c.mesh.neighbours[t as usize][i];
-                    if nb != NONE && !checked_before(c, t, nb) && check(c, t, i).is_some() {
-                        mask |= 1 << i;
-                    }
-                }
-                mask
-            })
-            .collect()
-    });
-    let mut count = 0;
-    for (k, &t) in list.iter().enumerate() {
+/// The flip operator: one sweep over the interior edges next to triangles modified since the
+/// last sweep, in triangle order, each accepted flip applied at once. With several threads the
+/// checks are first evaluated on the state at the start of the sweep (the frozen verdict of
+/// each edge); the sweep uses such a verdict only while neither triangle of the edge has
+/// changed, so the flips are the same for any number of threads.
+pub(crate) struct Flip;
+
+impl Flip {
+    /// Whether the edge from `t` to its neighbour `nb` is checked from `nb` first: `nb` is a
+    /// listed triangle of lower index.
+    #[inline]
+    fn checked_before(ctx: &Ctx, t: u32, nb: u32) -> bool {
+        nb < t && ctx.tseen[nb as usize] == ctx.gen
+    }
+}
+
+impl Operator<Ctx<'_>> for Flip {
+    type Site = u32;
+    type Key = (u32, u8);
+    type Frozen = bool;
+    type Plan = FlipPlan;
+    const SORTED: bool = false;
+
+    fn sites(&mut self, ctx: &mut Ctx) -> Vec<u32> {
+        ctx.new_pass();
+        let from = ctx.flip_pos;
+        ctx.flip_pos = ctx.log.len();
+        ctx.logged_since(from)
+    }
+
+    fn survey(&self, c: &Ctx, t: u32, evaluate: bool, out: &mut Vec<((u32, u8), Option<bool>)>) {
         for i in 0..3 {
-            let nb = ctx.mesh.neighbours[t as usize][i];
-            if nb == NONE {
-                continue;
-            }
-            let unchanged = ctx.tstamp[t as usize] != gen && ctx.tstamp[nb as usize] != gen;
-            // Already checked from `nb` and neither triangle has changed since: same answer.
-            if unchanged && checked_before(ctx, t, nb) {
-                continue;
-            }
-            let plan = match &pre {
-                Some(pre) if unchanged => (pre[k] >> i & 1 == 1).then_some(FlipPlan {
-                    t,
-                    i: i as u8,
-                    q: None,
-                }),
-                _ => check(ctx, t, i),
-            };
-            if let Some(plan) = plan {
-                apply(ctx, &plan);
-                count += 1;
-            }
+            let frozen = evaluate.then(|| {
+                let nb = c.mesh.neighbours[t as usize][i];
+                nb != NONE && !Self::checked_before(c, t, nb) && check(c, t, i).is_some()
+            });
+            out.push(((t, i as u8), frozen));
         }
     }
-    count
+
+    /// An interior edge, unless it was already checked from its neighbour and neither triangle
+    /// has changed since (same answer).
+    fn admissible(&self, ctx: &Ctx, (t, i): (u32, u8)) -> bool {
+        let nb = ctx.mesh.neighbours[t as usize][i as usize];
+        nb != NONE && !(self.unchanged(ctx, (t, i)) && Self::checked_before(ctx, t, nb))
+    }
+
+    fn unchanged(&self, ctx: &Ctx, (t, i): (u32, u8)) -> bool {
+        let nb = ctx.mesh.neighbours[t as usize][i as usize];
+        ctx.tstamp[t as usize] != ctx.gen && ctx.tstamp[nb as usize] != ctx.gen
+    }
+
+    fn check(
+        &mut self,
+        ctx: &mut Ctx,
+        (t, i): (u32, u8),
+        frozen: Option<bool>,
+    ) -> Option<FlipPlan> {
+        match frozen {
+            Some(ok) => ok.then_some(FlipPlan { t, i, q: None }),
+            None => check(ctx, t, i as usize),
+        }
+    }
+
+    fn apply(&mut self, ctx: &mut Ctx, plan: FlipPlan) {
+        apply(ctx, &plan);
+    }
+}
+
+/// One flip sweep ([`Flip`]); returns the number of flips.
+pub fn pass(ctx: &mut Ctx) -> usize {
+    run_pass(&mut Flip, ctx)
 }

@@ -23,11 +23,17 @@ const MAX_CAVITY: usize = 32;
 /// the order of the cavity's triangles.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InsertPlan {
+    /// The new point (metric midpoint of the split edge).
     pub p: DVec2,
+    /// The metric at the new point.
     pub m: Sym2,
+    /// Parameter of `p` along the split edge `ends[0] -> ends[1]`.
     pub s: f64,
+    /// The ends of the split edge.
     pub ends: [u32; 2],
+    /// The triangles removed (the two holding the split edge first).
     pub cavity: Vec<u32>,
+    /// The boundary edges of the cavity, each to be joined to the new point.
     pub boundary: Vec<CavityEdge>,
     /// `Q_ani` of the star triangle on each boundary edge in the arithmetic-mean element metric
     /// (the operators' default quality, so `apply` caches it; set only by `check`).

@@ -10,6 +10,7 @@ use std::sync::atomic::AtomicU64;
 /// `tq` entry of a triangle whose quality is not known.
 pub(super) const Q_UNKNOWN: u64 = 0x7ff8_0000_0000_0000; // f64::NAN
 
+/// `n` cached qualities, none known.
 pub(super) fn unknown_qualities(n: usize) -> Vec<AtomicU64> {
     (0..n).map(|_| AtomicU64::new(Q_UNKNOWN)).collect()
 }
