@@ -4,7 +4,7 @@
 //! smoothing pass, the convergence test; then a few final flip and smoothing sweeps. Spatial
 //! renumbering and metric gradation are interleaved as the mesh grows.
 
-use super::driver::{AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport};
+use super::options::{AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport};
 use crate::error::{Error, Result};
 use std::time::Instant;
 

@@ -42,6 +42,7 @@ mod tri;
 mod driver;
 pub mod estimate;
 pub mod features;
+mod options;
 mod report;
 mod run;
 mod shape;

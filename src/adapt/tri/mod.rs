@@ -28,7 +28,7 @@ pub(crate) mod split;
 pub(crate) use topo::Ctx;
 
 use super::cycle::Remesher;
-use super::driver::PassKind;
+use super::options::PassKind;
 use crate::error::Result;
 use crate::mesh::{Mesh2, NONE};
 use crate::metric::Sym2;

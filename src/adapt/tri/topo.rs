@@ -4,7 +4,6 @@
 //! vertex class (free, on a labelled curve, fixed).
 
 use super::kernel;
-use super::workspace::unknown_qualities;
 use crate::adapt::params::{MetricInterpolation, OpParams};
 use crate::adapt::sources::MetricSource;
 use crate::geom::DVec2;
@@ -12,6 +11,14 @@ use crate::mesh::{next, prev, Mesh2, NONE};
 use crate::metric::length::geometric_mean_length;
 use crate::metric::Sym2;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+
+/// `tq` entry of a triangle whose quality is not known.
+pub(super) const Q_UNKNOWN: u64 = 0x7ff8_0000_0000_0000; // f64::NAN
+
+/// `n` cached qualities, none known.
+pub(super) fn unknown_qualities(n: usize) -> Vec<AtomicU64> {
+    (0..n).map(|_| AtomicU64::new(Q_UNKNOWN)).collect()
+}
 
 /// Where a vertex may go: anywhere (`Free`), along one labelled curve (`Curve`, with the label
 /// and the two neighbours on the curve), or nowhere (`Fixed`: corner, required, junction).

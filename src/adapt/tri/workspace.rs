@@ -2,18 +2,10 @@
 //! cached qualities, and the [`EditListener`] through which the mesh edits keep them (and the
 //! metric and fields) in step with the mesh; spatial renumbering carries them along.
 
-use super::topo::Ctx;
+use super::topo::{unknown_qualities, Ctx, Q_UNKNOWN};
 use crate::mesh::{EditListener, Mesh2, NONE};
 use crate::metric::Sym2;
 use std::sync::atomic::AtomicU64;
-
-/// `tq` entry of a triangle whose quality is not known.
-pub(super) const Q_UNKNOWN: u64 = 0x7ff8_0000_0000_0000; // f64::NAN
-
-/// `n` cached qualities, none known.
-pub(super) fn unknown_qualities(n: usize) -> Vec<AtomicU64> {
-    (0..n).map(|_| AtomicU64::new(Q_UNKNOWN)).collect()
-}
 
 impl Ctx<'_> {
     /// Starts a new pass: every stamp becomes stale.
