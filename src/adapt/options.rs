@@ -6,7 +6,7 @@ use super::params::MetricInterpolation;
 use crate::error::{Error, Result};
 use serde::Serialize;
 
-/// Options of [`adapt`]. Build with `AdaptOptions::default().l_max(1.5).max_cycles(10)`.
+/// Options of [`adapt`](super::adapt). Build with `AdaptOptions::default().l_max(1.5).max_cycles(10)`.
 #[derive(Debug, Clone, Serialize)]
 pub struct AdaptOptions {
     /// Edges shorter than this in the metric are collapsed (default `1/sqrt(2)`).
@@ -40,7 +40,7 @@ pub struct AdaptOptions {
     /// of every cycle after which the mesh has grown by 10% the vertex metric is graded over the current mesh with this growth factor `β > 1`
     /// ([`crate::metric::gradate`], the `-hgrad` of mmg2d), so that a metric given on a coarse
     /// background cannot jump by orders of magnitude between neighbouring vertices of the
-    /// adapted mesh. Sizes only shrink. Only for metrics that no [`MetricSource`] re-evaluates.
+    /// adapted mesh. Sizes only shrink. Only for metrics that no [`MetricSource`](super::MetricSource) re-evaluates.
     pub gradation: Option<f64>,
     /// Stop with [`crate::Error::TooLarge`] when a refinement pass leaves more vertices than
     /// this (default `None`: no limit): a guard against a metric that asks for far more
@@ -194,7 +194,7 @@ pub struct PassReport {
     pub seconds: f64,
 }
 
-/// What [`adapt`] did. `converged` means the last cycle split or collapsed at most one edge per
+/// What [`adapt`](super::adapt) did. `converged` means the last cycle split or collapsed at most one edge per
 /// 2,000 vertices, or made as many splits as collapses (at most 8 each) and the same numbers as
 /// the cycle before (a split/collapse limit cycle); `converged == false` means the cycle cap was reached with edges still
 /// out of range: the mesh is valid, only not fully adapted.

@@ -1,7 +1,7 @@
 //! The [`Adapter`] used by the transient fixed point with the anisotropic engine: the
 //! geometric level-set metric of each field (004 eq. (6), through
 //! [`crate::adapt::LevelSetMetric`], derivatives recovered by [`crate::recovery::recover_ls`]),
-//! intersected over the fields (004 §3.5, [`crate::metric::intersect`]), then
+//! intersected over the fields (004 §3.5, [`crate::metric::intersect()`]), then
 //! [`crate::adapt::adapt`].
 
 use super::fixed_point::Adapter;

@@ -5,7 +5,7 @@
 //! characteristics-Galerkin scheme evaluates `u^n ∘ X^n`). The foot is found by integrating the
 //! trajectory backwards over `[t0, t1]`, split into `substeps` equal sub-steps, with an explicit
 //! Runge–Kutta scheme: forward Euler (first order, for tests), the midpoint predictor–corrector
-//! (second order, the scheme 004 cites from [26]) or classical RK4.
+//! (second order, the scheme 004 cites from its reference \[26\]) or classical RK4.
 
 use crate::error::{Error, Result};
 use crate::geom::DVec2;

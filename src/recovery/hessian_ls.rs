@@ -2,7 +2,7 @@
 //!
 //! At each vertex `x` the quadratic Taylor polynomial
 //! `u(x_i) = u(x) + (x_i - x) . grad u(x) + 1/2 (x_i - x)^T H(x) (x_i - x)` (004 §4.3, following
-//! its reference [3]) is fitted in the least-squares sense to the nodal values of the patch around
+//! its reference \[3\]) is fitted in the least-squares sense to the nodal values of the patch around
 //! `x`. The value `u(x)` is **kept fixed** (it is the nodal value), leaving 5 unknowns: the
 //! gradient and the `d(d+1)/2 = 3` Hessian coefficients. The patch is the first ring, widened to
 //! further rings when it has fewer than 6 neighbours or the system is ill-conditioned; local

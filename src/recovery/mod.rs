@@ -1,6 +1,6 @@
 //! Derivative recovery from P1 fields: gradients and Hessians on vertex patches.
 //!
-//! - [`recover_ls`] / [`hessian_ls`] / [`gradient_ls`]: least-squares Taylor fit of 004 §4.3
+//! - [`recover_ls`] / [`hessian_ls()`] / [`gradient_ls`]: least-squares Taylor fit of 004 §4.3
 //!   (value kept, gradient and Hessian fitted on a widened vertex patch). Exact for quadratics.
 //! - [`gradient_ppr`]: polynomial preserving recovery, 003 §6.2 (full quadratic fit, value
 //!   included). Exact for quadratics, second-order gradient for smooth fields.

@@ -3,7 +3,7 @@
 //!
 //! `Γ_h` is reconstructed cell by cell (segments in a triangle, triangles or quadrilaterals split
 //! in two in a tetrahedron) — no chaining is needed for distance queries. The pieces go into a
-//! bounding-volume hierarchy ([`super::bvh`]), and each vertex is one nearest-piece query:
+//! bounding-volume hierarchy (`bvh.rs`), and each vertex is one nearest-piece query:
 //! O((m + n) log m) for `m` pieces and `n` vertices, parallel over fixed chunks of vertices with
 //! rayon. The result does not depend on the number of threads.
 //!

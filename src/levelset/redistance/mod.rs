@@ -2,8 +2,8 @@
 //!
 //! - [`geometric`]: exact distance to the piecewise-linear zero level (004 §2.2), written once
 //!   for triangles and tetrahedra; the cut of one cell is per dimension ([`ZeroLevelPieces`]).
-//! - [`ppr_method`]: 003 §6 — PPR recovered gradient ([`ppr`]), quasi-normal field, oblique
-//!   projection (6.10)–(6.11) ([`oblique`]) on the cut cells, fast marching extension ([`fmm`]),
+//! - [`ppr_method`]: 003 §6 — PPR recovered gradient (`ppr.rs`), quasi-normal field, oblique
+//!   projection (6.10)–(6.11) (`oblique.rs`) on the cut cells, fast marching extension (`fmm.rs`),
 //!   P1 and P2, triangles and tetrahedra.
 
 mod bvh;

@@ -5,11 +5,11 @@
 //! Steps (003 §8, list after Table 8.4's description):
 //! 1. the cut cells `T_{Γ_h}` are found from the nodal signs (a cell is cut when its nodal values
 //!    take both signs or one is 0);
-//! 2. the PPR recovered gradient `G_h φ_h` ([`super::ppr`]) and `n_h = G_h φ_h / |G_h φ_h|` (6.6);
-//! 3. for every node `v ∈ N(T_{Γ_h})`, `d_h(v)` by (6.10)–(6.11) ([`super::oblique`]); with
+//! 2. the PPR recovered gradient `G_h φ_h` (`ppr.rs`) and `n_h = G_h φ_h / |G_h φ_h|` (6.6);
+//! 3. for every node `v ∈ N(T_{Γ_h})`, `d_h(v)` by (6.10)–(6.11) (`oblique.rs`); with
 //!    [`PprOptions::layers`] = 2 also for the nodes of the cells around the vertices of cut cells;
 //! 4. nodal interpolation `I_h d_h` (6.7) — the values at those nodes;
-//! 5. (extension) fast marching ([`super::fmm`]) from the projected nodes to all others, on the P1
+//! 5. (extension) fast marching (`fmm.rs`) from the projected nodes to all others, on the P1
 //!    sub-mesh of the nodes for P2; the sign of `φ_h` is kept outside the band.
 
 use rayon::prelude::*;
