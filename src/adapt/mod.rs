@@ -39,6 +39,7 @@ mod params;
 mod pass;
 mod tri;
 
+mod discrete;
 mod driver;
 pub mod estimate;
 pub mod features;
@@ -56,7 +57,7 @@ pub use report::{mesh_report, MeshReport};
 pub use run::{
     metric_file_options, run, AdaptTarget, Adapted, RunOptions, RunReport, DEFAULT_MAX_VERTICES,
 };
-pub use shape::{adapt_to_shape, ShapeAdaptOptions};
+pub use shape::{adapt_mesh_to_shape, adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
 
 #[cfg(test)]

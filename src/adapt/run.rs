@@ -2,7 +2,9 @@
 //! mesh, or to a metric field given on a mesh ([`run`]).
 //!
 //! - [`AdaptTarget::Shape`]: the geometric metric of 004 eq. (6) with exact derivatives,
-//!   re-evaluated at every new vertex ([`super::adapt_to_shape`]), or with
+//!   re-evaluated at every new vertex ([`super::adapt_to_shape`]); a shape that is not a
+//!   distance ([`Shape::is_distance`], e.g. an expression) is seen through
+//!   [`Normalized`], so that `f` and `c f` give the same mesh; or with
 //!   [`RunOptions::target_vertices`] the multiscale Hessian metric of the nodal distance.
 //! - [`AdaptTarget::LevelSet`]: eq. (6) (or the Hessian metric) with derivatives recovered from
 //!   the P1 field (004 §4.3); the field is carried to the new vertices.
@@ -12,15 +14,16 @@
 //! Before adapting, the size of the requested mesh is estimated from the metric's complexity
 //! ([`super::estimate`]) and a request above [`RunOptions::max_vertices`] is refused.
 
+use super::discrete::DiscreteLevelSet;
 use super::estimate;
 use super::{
-    adapt, adapt_to_shape, mesh_report, AdaptOptions, AdaptReport, AnalyticLevelSetSource,
-    CycleSmoothing, HessianMetric, LevelSetMetric, MeshReport, MetricInterpolation,
-    ShapeAdaptOptions,
+    adapt, adapt_mesh_to_shape, adapt_to_shape, mesh_report, AdaptOptions, AdaptReport,
+    AnalyticLevelSetSource, CycleSmoothing, HessianMetric, LevelSetMetric, MeshReport,
+    MetricInterpolation, ShapeAdaptOptions,
 };
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
-use crate::levelset::Shape;
+use crate::levelset::{Normalized, Shape};
 use crate::mesh::Mesh2;
 use crate::metric::{gradate, quality_stats, Sym2};
 use serde::Serialize;
@@ -162,6 +165,16 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
     let mut warnings = Vec::new();
     let (mesh, metric, u, shape, rep, source, estimated) = match target {
         AdaptTarget::Shape { shape, domain } => {
+            // eq. (6) needs a distance: a plain level-set function is seen through its
+            // scale-free first-order distance, normal and shape operator.
+            let shape: Box<dyn Shape> = if shape.is_distance() {
+                shape
+            } else {
+                Box::new(Normalized {
+                    inner: shape,
+                    cap: (domain.1 - domain.0).length(),
+                })
+            };
             let estimated = match opts.target_vertices {
                 Some(n) => n as f64,
                 None => estimate::shape_vertices(shape.as_ref(), lm, domain).0,
@@ -172,6 +185,26 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
                 .max(GUARD_FLOOR)
                 .min(opts.max_vertices);
             let (mesh, metric, u, rep, source) = adapt_shape(shape.as_ref(), domain, opts, cap)?;
+            (mesh, metric, Some(u), Some(shape), rep, source, estimated)
+        }
+        AdaptTarget::LevelSet { mesh, u } if opts.target_vertices.is_none() => {
+            // The input's P1 zero level is the interface, evaluated in the input mesh.
+            let shape = DiscreteLevelSet::new(mesh, u)?;
+            let domain = shape.mesh().bounding_box().unwrap_or_default();
+            let estimated = estimate::shape_vertices(&shape, lm, domain).0;
+            refuse_above(estimated, opts.max_vertices)?;
+            let cap = (GROWTH_GUARD * estimated)
+                .max(GUARD_FLOOR)
+                .min(opts.max_vertices);
+            let so = ShapeAdaptOptions {
+                metric: *lm,
+                adapt: AdaptOptions::default().max_vertices(Some(cap as usize)),
+                ..ShapeAdaptOptions::default()
+            };
+            let (mesh, u, rep) = adapt_mesh_to_shape(shape.mesh(), &shape, &so)?;
+            let metric = final_metric(&shape, &mesh, &so)?;
+            let source = describe(opts, "of the distance to the input's zero level");
+            let shape: Box<dyn Shape> = Box::new(shape);
             (mesh, metric, Some(u), Some(shape), rep, source, estimated)
         }
         AdaptTarget::LevelSet { mut mesh, u } => {
@@ -346,15 +379,7 @@ fn adapt_shape(
                 ..ShapeAdaptOptions::default()
             };
             let (mesh, u, rep) = adapt_to_shape(shape, domain, &so)?;
-            // The metric the last round adapted to, at the final vertices, for the report.
-            let src = AnalyticLevelSetSource::new(
-                |p| (shape.distance(p), shape.gradient(p), shape.hessian(p)),
-                lm,
-            );
-            let (mut metric, _) = src.evaluate(&mesh);
-            if let Some(beta) = so.gradation {
-                gradate(&mesh, &mut metric, beta)?;
-            }
+            let metric = final_metric(shape, &mesh, &so)?;
             Ok((mesh, metric, u, rep, describe(opts, "exact derivatives")))
         }
         Some(n) => {
@@ -378,6 +403,19 @@ fn adapt_shape(
             Ok((mesh, metric, u, total, describe(opts, "recovered Hessian")))
         }
     }
+}
+
+/// The metric the last round of a shape adaptation adapted to, at the final vertices.
+fn final_metric(shape: &dyn Shape, mesh: &Mesh2, so: &ShapeAdaptOptions) -> Result<Vec<Sym2>> {
+    let src = AnalyticLevelSetSource::new(
+        |p| (shape.distance(p), shape.gradient(p), shape.hessian(p)),
+        so.metric,
+    );
+    let (mut metric, _) = src.evaluate(mesh);
+    if let Some(beta) = so.gradation {
+        gradate(mesh, &mut metric, beta)?;
+    }
+    Ok(metric)
 }
 
 fn metric_only_report(mesh: &Mesh2, metric: &[Sym2]) -> MeshReport {

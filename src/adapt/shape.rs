@@ -106,15 +106,33 @@ pub fn adapt_to_shape(
     domain: (DVec2, DVec2),
     opts: &ShapeAdaptOptions,
 ) -> Result<(Mesh2, Vec<f64>, AdaptReport)> {
-    match shape_rounds(shape, domain, opts) {
+    with_exact_fallback(opts, |o| shape_rounds(shape, domain, None, o))
+}
+
+/// As [`adapt_to_shape`], starting from `mesh` (any domain, its boundary and labels kept)
+/// instead of a grid of a rectangle, and without corner features.
+pub fn adapt_mesh_to_shape(
+    mesh: &Mesh2,
+    shape: &dyn Shape,
+    opts: &ShapeAdaptOptions,
+) -> Result<(Mesh2, Vec<f64>, AdaptReport)> {
+    let domain = mesh.bounding_box().unwrap_or_default();
+    with_exact_fallback(opts, |o| shape_rounds(shape, domain, Some(mesh), o))
+}
+
+/// Runs `rounds`; when the vertex guard stops a graded run, runs it again without gradation.
+fn with_exact_fallback(
+    opts: &ShapeAdaptOptions,
+    rounds: impl Fn(&ShapeAdaptOptions) -> Result<(Mesh2, Vec<f64>, AdaptReport)>,
+) -> Result<(Mesh2, Vec<f64>, AdaptReport)> {
+    match rounds(opts) {
         Err(Error::TooLarge(_))
             if opts.gradation.is_some() && opts.adapt.max_vertices.is_some() =>
         {
-            let exact = ShapeAdaptOptions {
+            rounds(&ShapeAdaptOptions {
                 gradation: None,
                 ..opts.clone()
-            };
-            shape_rounds(shape, domain, &exact)
+            })
         }
         r => r,
     }
@@ -124,6 +142,7 @@ pub fn adapt_to_shape(
 fn shape_rounds(
     shape: &dyn Shape,
     domain: (DVec2, DVec2),
+    start: Option<&Mesh2>,
     opts: &ShapeAdaptOptions,
 ) -> Result<(Mesh2, Vec<f64>, AdaptReport)> {
     opts.metric.validate()?;
@@ -134,7 +153,10 @@ fn shape_rounds(
     }
     let t0 = std::time::Instant::now();
     let n = opts.coarse_cells;
-    let mut mesh = Mesh2::rectangle(domain.0, domain.1, n, n, GridPattern::UnionJack)?;
+    let mut mesh = match start {
+        Some(m) => m.clone(),
+        None => Mesh2::rectangle(domain.0, domain.1, n, n, GridPattern::UnionJack)?,
+    };
     if !(0.0..=1.0).contains(&opts.min_in_range) {
         return Err(Error::InvalidInput(format!(
             "adapt_to_shape: min_in_range must lie in [0, 1] (got {})",
@@ -153,7 +175,7 @@ fn shape_rounds(
             opts.kink_edge
         )));
     }
-    if opts.features {
+    if opts.features && start.is_none() {
         let kink_length = opts.kink_edge.map(|k| k * opts.metric.hmin);
         insert_corner_features(&mut mesh, shape, domain, kink_length)?;
     }

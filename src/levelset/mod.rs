@@ -16,6 +16,6 @@ pub use interface::{
 };
 pub use measure::{enclosed_measure, interface_measure};
 pub use shapes::{
-    nodal_distance, shape_by_name, Ball, Circle, Difference, Flower, Intersection, Rotated, Shape,
-    ShapePoint, Sphere, Torus, Union, Zalesak, SHAPE_NAMES,
+    nodal_distance, shape_by_name, Ball, Circle, Difference, Flower, Intersection, Normalized,
+    Rotated, Shape, ShapePoint, Sphere, Torus, Union, Zalesak, SHAPE_NAMES,
 };

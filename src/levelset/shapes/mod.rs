@@ -10,11 +10,13 @@
 
 mod ball;
 mod csg;
+mod normalized;
 mod space;
 mod torus;
 
 pub use ball::{Ball, Circle, Sphere};
 pub use csg::{Difference, Intersection, Rotated, Union};
+pub use normalized::Normalized;
 pub use space::ShapePoint;
 pub use torus::Torus;
 
@@ -69,6 +71,14 @@ pub trait Shape<P: ShapePoint = DVec2>: Send + Sync {
         Vec::new()
     }
 
+    /// Whether [`Shape::distance`] is a signed distance, at least near the zero level (`true`,
+    /// the default). A level-set function that is not one (an [`Expr`] such as
+    /// `x^2/a^2 + y^2/b^2 - 1`) says `false`, and [`crate::adapt::run`] sees it through
+    /// [`Normalized`], whose quantities do not depend on its scale.
+    fn is_distance(&self) -> bool {
+        true
+    }
+
     /// A short human-readable name.
     fn name(&self) -> String;
 }
@@ -94,6 +104,9 @@ impl<P: ShapePoint, S: Shape<P> + ?Sized> Shape<P> for Box<S> {
     }
     fn corners(&self) -> Vec<P> {
         (**self).corners()
+    }
+    fn is_distance(&self) -> bool {
+        (**self).is_distance()
     }
     fn name(&self) -> String {
         (**self).name()
@@ -339,6 +352,9 @@ impl Shape for Expr {
     /// The expression's value (not a distance unless the expression is one).
     fn distance(&self, p: DVec2) -> f64 {
         self.eval(p)
+    }
+    fn is_distance(&self) -> bool {
+        false
     }
     fn name(&self) -> String {
         self.source().to_string()
