@@ -91,8 +91,14 @@ fn a_discrete_level_set_keeps_the_input_zero_level_whatever_its_scale() {
             "c = {c}: {} vertices, distance to the input's zero level {d:.2e}, area {area_diff:.2e}",
             out.mesh.n_points()
         );
-        assert!(d <= 2.0 * opts.metric.eps, "c = {c}: two-sided distance {d:e}");
-        assert!(area_diff <= 2e-4, "c = {c}: relative area difference {area_diff:e}");
+        assert!(
+            d <= 2.0 * opts.metric.eps,
+            "c = {c}: two-sided distance {d:e}"
+        );
+        assert!(
+            area_diff <= 2e-4,
+            "c = {c}: relative area difference {area_diff:e}"
+        );
         counts.push(out.mesh.n_points() as f64);
     }
     let (lo, hi) = counts

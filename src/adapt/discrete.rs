@@ -82,13 +82,20 @@ impl DiscreteLevelSet {
             .locate(p, self.mesh.vert_tri.first().copied().unwrap_or(0))
         {
             Location::Inside { tri, bary } => (tri as usize, bary),
-            Location::Outside { tri, .. } => {
-                let [a, b, c] = self.mesh.tri_points(tri as usize);
-                let bary = crate::geom::barycentric(a, b, c, p).map(|x| x.clamp(0.0, 1.0));
-                let s: f64 = bary.iter().sum();
-                (tri as usize, bary.map(|x| x / s))
-            }
+            // The walk can leave a non-convex domain (a hole) before reaching `p`.
+            Location::Outside { tri, .. } => match self.mesh.locate_brute_force(p) {
+                Some(Location::Inside { tri, bary }) => (tri as usize, bary),
+                _ => self.clamped(tri as usize, p),
+            },
         }
+    }
+
+    /// Barycentric coordinates of `p` in triangle `t`, clamped to the triangle.
+    fn clamped(&self, t: usize, p: DVec2) -> (usize, [f64; 3]) {
+        let [a, b, c] = self.mesh.tri_points(t);
+        let bary = crate::geom::barycentric(a, b, c, p).map(|x| x.clamp(0.0, 1.0));
+        let s: f64 = bary.iter().sum();
+        (t, bary.map(|x| x / s))
     }
 
     /// The closest point of the zero level and the distance to it.
