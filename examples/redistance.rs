@@ -9,6 +9,7 @@
 //!
 //! `cargo run --release --example redistance`
 
+use anisomesh::geom::simplex::p1_gradient;
 use anisomesh::levelset::redistance::redistance_geometric;
 use anisomesh::levelset::{enclosed_area, interface_length};
 use anisomesh::prelude::*;
@@ -32,13 +33,8 @@ fn main() -> anisomesh::Result<()> {
         .live_tris()
         .filter(|&t| mesh.tris[t].iter().all(|&v| d[v as usize].abs() < 0.1))
         .map(|t| {
-            let [a, b, c] = mesh.tri_points(t);
-            let [da, db, dc] = mesh.tris[t].map(|v| d[v as usize]);
-            let area2 = (b - a).perp_dot(c - a);
-            let grad = ((db - da) * DVec2::new(c.y - a.y, a.x - c.x)
-                + (dc - da) * DVec2::new(a.y - b.y, b.x - a.x))
-                / area2;
-            grad.length()
+            let values = mesh.tris[t].map(|v| d[v as usize]);
+            p1_gradient(&mesh.tri_points(t), &values).length()
         })
         .collect();
     let (lo, hi) = slopes

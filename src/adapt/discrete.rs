@@ -17,6 +17,7 @@
 //! between the input's zero level and the output's and their relative area difference.
 
 use crate::error::{Error, Result};
+use crate::geom::simplex::p1_gradient;
 use crate::geom::DVec2;
 use crate::levelset::redistance::redistance_geometric;
 use crate::levelset::{enclosed_area, extract_zero_level, interface_length, Shape};
@@ -131,13 +132,8 @@ impl Shape for DiscreteLevelSet {
         } else {
             // On the zero level: the normal of the input's P1 field there.
             let (t, _) = self.locate(p);
-            let [a, b, cc] = self.mesh.tri_points(t);
-            let [ua, ub, uc] = self.mesh.tris[t].map(|i| self.u[i as usize]);
-            let area2 = (b - a).perp_dot(cc - a);
-            let g = ((ub - ua) * DVec2::new(cc.y - a.y, a.x - cc.x)
-                + (uc - ua) * DVec2::new(a.y - b.y, b.x - a.x))
-                / area2;
-            g.normalize_or_zero()
+            let values = self.mesh.tris[t].map(|i| self.u[i as usize]);
+            p1_gradient(&self.mesh.tri_points(t), &values).normalize_or_zero()
         }
     }
     fn hessian(&self, p: DVec2) -> Sym2 {
