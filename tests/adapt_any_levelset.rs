@@ -106,3 +106,23 @@ fn a_discrete_level_set_keeps_the_input_zero_level_whatever_its_scale() {
         .fold((f64::INFINITY, 0.0_f64), |(l, h), &n| (l.min(n), h.max(n)));
     assert!(hi / lo <= 1.01, "vertex counts {counts:?}");
 }
+
+#[test]
+fn other_implicit_functions_settle() {
+    // A hyperbola (two branches), a grid of bumps whose zero lines cross (∇f = 0 there), and
+    // a union of two circles by min, scaled far from a distance.
+    for e in [
+        "x*y - 0.05",
+        "sin(5*x)*sin(5*y)",
+        "0.001*min(x^2 + y^2 - 0.16, (x - 0.5)^2 + y^2 - 0.04)",
+    ] {
+        let target = AdaptTarget::shape(Expr::parse(e).unwrap(), square());
+        let out = adapt::run(target, &RunOptions::default()).unwrap();
+        println!(
+            "{e}: {} vertices, {:.1}% in range",
+            out.mesh.n_points(),
+            100.0 * out.report.mesh.edge_length_in_range
+        );
+        assert_settled(&out, e);
+    }
+}
