@@ -244,28 +244,11 @@ impl Csr {
 
     /// The transpose.
     pub fn transpose(&self) -> Csr {
-        let n = self.n;
-        let mut count = vec![0usize; n + 1];
-        for &j in &self.col {
-            count[j as usize + 1] += 1;
-        }
-        for i in 0..n {
-            count[i + 1] += count[i];
-        }
-        let mut fill = count.clone();
-        let mut col = vec![0u32; self.nnz()];
-        let mut val = vec![0.0; self.nnz()];
-        for i in 0..n {
-            for k in self.row_ptr[i]..self.row_ptr[i + 1] {
-                let j = self.col[k] as usize;
-                col[fill[j]] = i as u32;
-                val[fill[j]] = self.val[k];
-                fill[j] += 1;
-            }
-        }
+        let (row_ptr, col, val) =
+            super::rect_csr::transpose_arrays(self.n, &self.row_ptr, &self.col, &self.val);
         Csr {
-            n,
-            row_ptr: count,
+            n: self.n,
+            row_ptr,
             col,
             val,
         }

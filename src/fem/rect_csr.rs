@@ -105,28 +105,10 @@ impl RectCsr {
     /// The transpose `Mᵀ` (`ncols x nrows`), by a counting sort over the columns: within a row
     /// of `Mᵀ` the entries are in increasing column order.
     pub fn transpose(&self) -> RectCsr {
-        let (m, n) = (self.nrows(), self.ncols);
-        let mut ptr = vec![0usize; n + 1];
-        for &j in &self.col {
-            ptr[j as usize + 1] += 1;
-        }
-        for j in 0..n {
-            ptr[j + 1] += ptr[j];
-        }
-        let mut fill = ptr.clone();
-        let mut col = vec![0u32; self.col.len()];
-        let mut val = vec![0.0; self.col.len()];
-        for i in 0..m {
-            for q in self.row_ptr[i]..self.row_ptr[i + 1] {
-                let j = self.col[q] as usize;
-                col[fill[j]] = i as u32;
-                val[fill[j]] = self.val[q];
-                fill[j] += 1;
-            }
-        }
+        let (row_ptr, col, val) = transpose_arrays(self.ncols, &self.row_ptr, &self.col, &self.val);
         RectCsr {
-            ncols: m,
-            row_ptr: ptr,
+            ncols: self.nrows(),
+            row_ptr,
             col,
             val,
         }
@@ -206,4 +188,33 @@ mod tests {
         let e = RectCsr::from_rows(2, &[vec![(2, 1.0)]]).unwrap_err();
         assert!(e.to_string().contains("column 2"), "{e}");
     }
+}
+
+/// The arrays of the transpose of a CSR matrix with `ncols` columns (counting sort by column;
+/// within a row of the transpose the entries keep their original row order).
+pub(crate) fn transpose_arrays(
+    ncols: usize,
+    row_ptr: &[usize],
+    col: &[u32],
+    val: &[f64],
+) -> (Vec<usize>, Vec<u32>, Vec<f64>) {
+    let mut ptr = vec![0usize; ncols + 1];
+    for &j in col {
+        ptr[j as usize + 1] += 1;
+    }
+    for j in 0..ncols {
+        ptr[j + 1] += ptr[j];
+    }
+    let mut fill = ptr.clone();
+    let mut tcol = vec![0u32; col.len()];
+    let mut tval = vec![0.0; col.len()];
+    for i in 0..row_ptr.len().saturating_sub(1) {
+        for q in row_ptr[i]..row_ptr[i + 1] {
+            let j = col[q] as usize;
+            tcol[fill[j]] = i as u32;
+            tval[fill[j]] = val[q];
+            fill[j] += 1;
+        }
+    }
+    (ptr, tcol, tval)
 }
