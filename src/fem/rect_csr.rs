@@ -128,6 +128,35 @@ impl RectCsr {
     }
 }
 
+/// The arrays of the transpose of a CSR matrix with `ncols` columns (counting sort by column;
+/// within a row of the transpose the entries keep their original row order).
+pub(crate) fn transpose_arrays(
+    ncols: usize,
+    row_ptr: &[usize],
+    col: &[u32],
+    val: &[f64],
+) -> (Vec<usize>, Vec<u32>, Vec<f64>) {
+    let mut ptr = vec![0usize; ncols + 1];
+    for &j in col {
+        ptr[j as usize + 1] += 1;
+    }
+    for j in 0..ncols {
+        ptr[j + 1] += ptr[j];
+    }
+    let mut fill = ptr.clone();
+    let mut tcol = vec![0u32; col.len()];
+    let mut tval = vec![0.0; col.len()];
+    for i in 0..row_ptr.len().saturating_sub(1) {
+        for q in row_ptr[i]..row_ptr[i + 1] {
+            let j = col[q] as usize;
+            tcol[fill[j]] = i as u32;
+            tval[fill[j]] = val[q];
+            fill[j] += 1;
+        }
+    }
+    (ptr, tcol, tval)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -188,33 +217,4 @@ mod tests {
         let e = RectCsr::from_rows(2, &[vec![(2, 1.0)]]).unwrap_err();
         assert!(e.to_string().contains("column 2"), "{e}");
     }
-}
-
-/// The arrays of the transpose of a CSR matrix with `ncols` columns (counting sort by column;
-/// within a row of the transpose the entries keep their original row order).
-pub(crate) fn transpose_arrays(
-    ncols: usize,
-    row_ptr: &[usize],
-    col: &[u32],
-    val: &[f64],
-) -> (Vec<usize>, Vec<u32>, Vec<f64>) {
-    let mut ptr = vec![0usize; ncols + 1];
-    for &j in col {
-        ptr[j as usize + 1] += 1;
-    }
-    for j in 0..ncols {
-        ptr[j + 1] += ptr[j];
-    }
-    let mut fill = ptr.clone();
-    let mut tcol = vec![0u32; col.len()];
-    let mut tval = vec![0.0; col.len()];
-    for i in 0..row_ptr.len().saturating_sub(1) {
-        for q in row_ptr[i]..row_ptr[i + 1] {
-            let j = col[q] as usize;
-            tcol[fill[j]] = i as u32;
-            tval[fill[j]] = val[q];
-            fill[j] += 1;
-        }
-    }
-    (ptr, tcol, tval)
 }
