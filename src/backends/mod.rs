@@ -24,6 +24,7 @@
 //! adapted mesh of 004).
 
 pub mod adapted;
+pub mod dtgrid;
 mod implicit;
 mod report;
 
