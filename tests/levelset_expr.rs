@@ -1,7 +1,7 @@
 //! The expression parser: values, precedence, error messages with columns, and fuzzing.
 
 use anisomesh::levelset::{Expr, Shape};
-use anisomesh::DVec2;
+use anisomesh::{DVec2, DVec3};
 use proptest::prelude::*;
 
 fn eval(src: &str, x: f64, y: f64) -> f64 {
@@ -155,4 +155,27 @@ proptest! {
         // Same operations in the same order: bit-identical (or both NaN).
         prop_assert!(got == want || (got.is_nan() && want.is_nan()), "{} -> {} vs {}", src, got, want);
     }
+}
+
+#[test]
+fn z_and_t_only_where_asked_for() {
+    use anisomesh::levelset::Variables;
+    // In plain 2D parsing, z and t are unknown names and the message lists the valid ones.
+    let err = Expr::parse("x + z").unwrap_err().to_string();
+    assert!(
+        err.contains("unknown name 'z'") && err.contains("x, y, pi"),
+        "{err}"
+    );
+    assert!(Expr::parse("t * x").is_err());
+    let e3 = Expr::parse_with("x^2 + y^2 + z^2 - 0.25", Variables::XYZ).unwrap();
+    assert!((e3.eval3(DVec3::new(0.5, 0.0, 0.0))).abs() < 1e-15);
+    assert!((e3.eval3(DVec3::new(0.0, 0.0, 1.0)) - 0.75).abs() < 1e-15);
+    let et = Expr::parse_with("sin(pi*x) * cos(pi*t/8)", Variables::XYT).unwrap();
+    assert!((et.eval_t(DVec2::new(0.5, 0.0), 8.0) + 1.0).abs() < 1e-15);
+    let err = Expr::parse_with("z", Variables::XYT)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("x, y, t"), "{err}");
+    let all = Expr::parse_with("x + 2*y + 4*z + 8*t", Variables::XYZT).unwrap();
+    assert_eq!(all.eval_vars([1.0, 1.0, 1.0, 1.0]), 15.0);
 }

@@ -1,5 +1,6 @@
-//! User expressions in `x` and `y` (`"x^2 + y^2 - 0.25"`), parsed by recursive descent and
-//! compiled to a postfix program evaluated on a small stack.
+//! User expressions in `x` and `y` (`"x^2 + y^2 - 0.25"`), and with [`Expr::parse_with`] also in
+//! `z` and the time `t`, parsed by recursive descent and compiled to a postfix program evaluated
+//! on a small stack.
 //!
 //! Grammar (`^` binds tighter than unary minus and is right-associative, so `-x^2 = -(x^2)` and
 //! `2^3^2 = 2^9`):
@@ -8,15 +9,17 @@
 //! term   := unary (('*' | '/') unary)*
 //! unary  := ('-' | '+') unary | power
 //! power  := atom ('^' unary)?
-//! atom   := number | 'x' | 'y' | 'pi' | func '(' expr (',' expr)* ')' | '(' expr ')'
+//! atom   := number | variable | 'pi' | func '(' expr (',' expr)* ')' | '(' expr ')'
 //! func   := sqrt abs sin cos tan exp log (one argument) | min max atan2 (two arguments)
 //! ```
+//! The variables are `x` and `y` ([`Expr::parse`]) or the set named by [`Variables`]
+//! ([`Expr::parse_with`]): `x y z` for 3D shapes, `x y t` for time-dependent velocity fields.
 //! Numbers accept a fraction and an exponent (`1e-3`, `.5`, `2.5E+2`). Errors name the 1-based
 //! column and the problem ("unexpected ')' at column 7"). Parsing never panics; nesting deeper
 //! than [`MAX_DEPTH`] is an error rather than a stack overflow.
 
 use crate::error::{Error, Result};
-use crate::geom::DVec2;
+use crate::geom::{DVec2, DVec3};
 
 /// Maximum nesting depth (parentheses, unary signs, powers, function calls).
 pub const MAX_DEPTH: usize = 200;
@@ -26,6 +29,8 @@ enum Op {
     Num(f64),
     X,
     Y,
+    Z,
+    T,
     Neg,
     Add,
     Sub,
@@ -170,6 +175,7 @@ struct Parser<'a> {
     pos: usize,
     depth: usize,
     program: Vec<Op>,
+    vars: Variables,
 }
 
 impl Parser<'_> {
@@ -295,6 +301,8 @@ impl Parser<'_> {
         let var = match name {
             "x" => Some(Op::X),
             "y" => Some(Op::Y),
+            "z" if self.vars.z => Some(Op::Z),
+            "t" if self.vars.t => Some(Op::T),
             "pi" => Some(Op::Num(std::f64::consts::PI)),
             _ => None,
         };
@@ -325,7 +333,8 @@ impl Parser<'_> {
                 return Err(self.error(
                     col,
                     format!(
-                        "unknown name '{name}' (variables: x, y, pi; functions: sqrt abs sin cos tan exp log min max atan2)"
+                        "unknown name '{name}' (variables: {}, pi; functions: sqrt abs sin cos tan exp log min max atan2)",
+                        self.vars.names()
                     ),
                 ))
             }
@@ -380,6 +389,12 @@ impl Expr {
     /// Parses and compiles `source`. Errors ([`Error::InvalidInput`]) name the column and the
     /// problem.
     pub fn parse(source: &str) -> Result<Expr> {
+        Expr::parse_with(source, Variables::XY)
+    }
+
+    /// Parses and compiles `source` with the variables `vars` (any other name is an error naming
+    /// the valid ones).
+    pub fn parse_with(source: &str, vars: Variables) -> Result<Expr> {
         let chars: Vec<char> = source.chars().collect();
         let toks = tokenize(&chars, source)?;
         let mut p = Parser {
@@ -389,6 +404,7 @@ impl Expr {
             pos: 0,
             depth: 0,
             program: Vec::new(),
+            vars,
         };
         if p.peek().0 == Tok::End {
             return Err(p.error(1, "empty expression"));
@@ -403,7 +419,7 @@ impl Expr {
         let mut max_stack = 0usize;
         for op in &program {
             depth = match op {
-                Op::Num(_) | Op::X | Op::Y => depth + 1,
+                Op::Num(_) | Op::X | Op::Y | Op::Z | Op::T => depth + 1,
                 Op::Neg | Op::F1(_) => depth,
                 _ => depth - 1,
             };
@@ -421,8 +437,24 @@ impl Expr {
         &self.source
     }
 
-    /// Evaluates at `p = (x, y)`. IEEE semantics: `sqrt(-1)` and `log(0)` give NaN and `-inf`.
+    /// Evaluates at `p = (x, y)` (with `z = t = 0`). IEEE semantics: `sqrt(-1)` and `log(0)`
+    /// give NaN and `-inf`.
     pub fn eval(&self, p: DVec2) -> f64 {
+        self.eval_vars([p.x, p.y, 0.0, 0.0])
+    }
+
+    /// Evaluates at `p = (x, y, z)` (with `t = 0`).
+    pub fn eval3(&self, p: DVec3) -> f64 {
+        self.eval_vars([p.x, p.y, p.z, 0.0])
+    }
+
+    /// Evaluates at `p = (x, y)` and time `t` (with `z = 0`).
+    pub fn eval_t(&self, p: DVec2, t: f64) -> f64 {
+        self.eval_vars([p.x, p.y, 0.0, t])
+    }
+
+    /// Evaluates with the variables `[x, y, z, t]`.
+    pub fn eval_vars(&self, p: [f64; 4]) -> f64 {
         const SMALL: usize = 32;
         if self.max_stack <= SMALL {
             let mut stack = [0.0f64; SMALL];
@@ -433,7 +465,7 @@ impl Expr {
         }
     }
 
-    fn run(&self, p: DVec2, stack: &mut [f64]) -> f64 {
+    fn run(&self, p: [f64; 4], stack: &mut [f64]) -> f64 {
         let mut n = 0usize;
         for op in &self.program {
             match *op {
@@ -441,12 +473,13 @@ impl Expr {
                     stack[n] = v;
                     n += 1;
                 }
-                Op::X => {
-                    stack[n] = p.x;
-                    n += 1;
-                }
-                Op::Y => {
-                    stack[n] = p.y;
+                Op::X | Op::Y | Op::Z | Op::T => {
+                    stack[n] = p[match *op {
+                        Op::X => 0,
+                        Op::Y => 1,
+                        Op::Z => 2,
+                        _ => 3,
+                    }];
                     n += 1;
                 }
                 Op::Neg => stack[n - 1] = -stack[n - 1],
@@ -480,6 +513,35 @@ impl Expr {
             }
         }
         stack[0]
+    }
+}
+
+/// The variables an expression may use besides `x` and `y` (see [`Expr::parse_with`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Variables {
+    /// Whether `z` is a variable (3D shapes).
+    pub z: bool,
+    /// Whether `t` is a variable (time-dependent fields).
+    pub t: bool,
+}
+
+impl Variables {
+    /// `x`, `y`.
+    pub const XY: Variables = Variables { z: false, t: false };
+    /// `x`, `y`, `z`.
+    pub const XYZ: Variables = Variables { z: true, t: false };
+    /// `x`, `y`, `t`.
+    pub const XYT: Variables = Variables { z: false, t: true };
+    /// `x`, `y`, `z`, `t`.
+    pub const XYZT: Variables = Variables { z: true, t: true };
+
+    fn names(self) -> &'static str {
+        match (self.z, self.t) {
+            (false, false) => "x, y",
+            (true, false) => "x, y, z",
+            (false, true) => "x, y, t",
+            (true, true) => "x, y, z, t",
+        }
     }
 }
 

@@ -9,7 +9,7 @@ pub mod measure;
 pub mod redistance;
 pub mod shapes;
 
-pub use expr::Expr;
+pub use expr::{Expr, Variables};
 pub use interface::{
     enclosed_area, extract_zero_level, interface_distance, interface_length, InterfaceError,
     Polyline,
