@@ -334,3 +334,32 @@ fn sphere_and_torus() {
     );
     assert!(s.name().starts_with("sphere") && t.name().starts_with("torus"));
 }
+
+#[test]
+fn star_surface_of_004_encloses_its_published_volume() {
+    use anisomesh::levelset::StarSurface;
+    use anisomesh::DVec3;
+    let star = StarSurface::PAPER;
+    // 004 §5: exact enclosed volume 0.4805422178.
+    let v = star.exact_area().unwrap();
+    assert!((v - 0.4805422178).abs() < 1e-9, "volume {v}");
+    // A Monte Carlo-free check of the formula: midpoint sum of ρ³/3 cos φ on a fine grid.
+    let (nt, np) = (720, 720);
+    let mut s = 0.0;
+    for i in 0..nt {
+        let th = std::f64::consts::TAU * (i as f64 + 0.5) / nt as f64;
+        for j in 0..np {
+            let ph =
+                -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * (j as f64 + 0.5) / np as f64;
+            s += star.radius_at(th, ph).powi(3) / 3.0 * ph.cos();
+        }
+    }
+    s *= std::f64::consts::TAU / nt as f64 * std::f64::consts::PI / np as f64;
+    assert!((s - v).abs() < 1e-5, "midpoint {s} vs {v}");
+    // Zero on the surface, negative inside, positive outside.
+    let dir = DVec3::new(1.0, 2.0, 0.5).normalize();
+    let r = star.radius_towards(dir);
+    assert!(star.distance(dir * r).abs() < 1e-14);
+    assert!(star.distance(dir * (0.9 * r)) < 0.0 && star.distance(dir * (1.1 * r)) > 0.0);
+    assert!(!Shape::<DVec3>::is_distance(&star));
+}

@@ -28,9 +28,10 @@ pub mod dtgrid;
 mod implicit;
 mod report;
 
+pub use crate::levelset::TriangleSurface;
 pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme, Redistancing};
 pub use implicit::FnShape;
-pub use report::{CurvatureSamples, PhaseTimes, StepReport, TriangleSurface};
+pub use report::{CurvatureSamples, PhaseTimes, StepReport};
 
 use crate::error::Result;
 use crate::geom::{DVec2, DVec3};

@@ -1,8 +1,7 @@
 //! What the steps and queries of a [`super::LevelSetBackend`] return: the per-step report, the
-//! curvature samples and the 3D zero level.
+//! curvature samples.
 
 use super::Dimension;
-use crate::geom::DVec3;
 use serde::Serialize;
 
 /// Wall-clock seconds of the phases of one step; a phase a back end does not have stays 0.
@@ -89,48 +88,5 @@ impl<D: Dimension> CurvatureSamples<D> {
             .iter()
             .map(|k| ((k - exact) / exact).abs())
             .fold(0.0, f64::max)
-    }
-}
-
-/// A triangulated surface in 3D: the zero level of a 3D back end. Triangles are oriented with
-/// the inside (`u < 0`) behind them (normals `(b − a) × (c − a)` point outward).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct TriangleSurface {
-    /// The vertices.
-    pub points: Vec<DVec3>,
-    /// Three vertex indices per triangle.
-    pub triangles: Vec<[u32; 3]>,
-}
-
-impl TriangleSurface {
-    /// The total area of the triangles.
-    pub fn area(&self) -> f64 {
-        self.triangles
-            .iter()
-            .map(|&[a, b, c]| {
-                let (a, b, c) = (
-                    self.points[a as usize],
-                    self.points[b as usize],
-                    self.points[c as usize],
-                );
-                0.5 * (b - a).cross(c - a).length()
-            })
-            .sum()
-    }
-
-    /// The volume enclosed by a closed, outward-oriented surface (the divergence theorem:
-    /// `Σ a · (b × c) / 6`).
-    pub fn enclosed_volume(&self) -> f64 {
-        self.triangles
-            .iter()
-            .map(|&[a, b, c]| {
-                let (a, b, c) = (
-                    self.points[a as usize],
-                    self.points[b as usize],
-                    self.points[c as usize],
-                );
-                a.dot(b.cross(c)) / 6.0
-            })
-            .sum()
     }
 }

@@ -8,6 +8,7 @@ pub mod interface;
 pub mod measure;
 pub mod redistance;
 pub mod shapes;
+mod surface;
 
 pub use expr::{Expr, Variables};
 pub use interface::{
@@ -17,5 +18,6 @@ pub use interface::{
 pub use measure::{enclosed_measure, interface_measure};
 pub use shapes::{
     nodal_distance, shape_by_name, Ball, Circle, Difference, Flower, Intersection, Normalized,
-    Rotated, Shape, ShapePoint, Sphere, Torus, Union, Zalesak, SHAPE_NAMES,
+    Rotated, Shape, ShapePoint, Sphere, StarSurface, Torus, Union, Zalesak, SHAPE_NAMES,
 };
+pub use surface::TriangleSurface;

@@ -12,12 +12,14 @@ mod ball;
 mod csg;
 mod normalized;
 mod space;
+mod star;
 mod torus;
 
 pub use ball::{Ball, Circle, Sphere};
 pub use csg::{Difference, Intersection, Rotated, Union};
 pub use normalized::Normalized;
 pub use space::ShapePoint;
+pub use star::StarSurface;
 pub use torus::Torus;
 
 use super::arcpoly::{ArcPolygon, Piece};
