@@ -31,9 +31,9 @@ pub fn stefan_velocity(
             normals.len()
         )));
     }
-    if let Some(v) =
-        (0..n).find(|&v| on_interface[v] && !((normals[v].length() - 1.0).abs() < 1e-6))
-    {
+    if let Some(v) = (0..n).find(|&v| {
+        on_interface[v] && ((normals[v].length() - 1.0).abs() >= 1e-6 || normals[v].is_nan())
+    }) {
         return Err(Error::InvalidInput(format!(
             "Stefan velocity: the normal at interface vertex {v} is not a unit vector ({})",
             normals[v]
