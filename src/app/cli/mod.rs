@@ -6,9 +6,12 @@ mod bench;
 mod convert;
 mod flows;
 mod info;
+mod measure;
 mod metric_args;
 mod progress;
+mod redistance;
 mod shape;
+mod user_files;
 
 use anisomesh::Result;
 use clap::{Parser, Subcommand};
@@ -46,6 +49,12 @@ enum Command {
         #[arg(long)]
         sol: Option<PathBuf>,
     },
+    /// Edge lengths, Q_ani and mean ratio of a triangle or tetrahedral mesh in a metric (.sol or
+    /// a UGAWG analytic field).
+    Measure(measure::MeasureArgs),
+    /// Signed distance to the zero level of a user's level set (.sol) on a triangle or
+    /// tetrahedral mesh: geometric (exact), PPR or fast marching.
+    Redistance(redistance::RedistanceArgs),
     /// Converts a mesh between formats, chosen by extension (.mesh, .msh -> .mesh, .msh, .vtu).
     Convert {
         /// Input mesh (.mesh or .msh).
@@ -87,6 +96,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Bench(b)) => bench::run(b),
+        Some(Command::Measure(a)) => measure::run(a),
+        Some(Command::Redistance(a)) => redistance::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

@@ -1,0 +1,129 @@
+//! `anisomesh measure MESH [--metric METRIC.sol | --ugawg CASE] [--json]`: how well a triangle or
+//! tetrahedral mesh conforms to a metric — edge lengths in the metric, `Q_ani` and the mean
+//! ratio ([`anisomesh::metric::conformity`]); without a metric, in the Euclidean metric.
+
+use super::user_files::{read_metric2, read_metric3, read_user_mesh, UserMesh};
+use anisomesh::metric::ugawg::UgawgCase;
+use anisomesh::metric::{conformity, conformity_analytic, Conformity, Sym2, Sym3};
+use anisomesh::{Error, Result};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Options of `anisomesh measure`.
+#[derive(Debug, Args)]
+pub struct MeasureArgs {
+    /// The mesh (.mesh 2D or 3D, .msh).
+    pub mesh: PathBuf,
+    /// A metric on the mesh's vertices (.sol, symmetric tensors).
+    #[arg(long, conflicts_with = "ugawg")]
+    pub metric: Option<PathBuf>,
+    /// A UGAWG analytic metric (3D): cube-linear or cube-polar-1; edge lengths are integrated
+    /// along the edges in it.
+    #[arg(long)]
+    pub ugawg: Option<String>,
+    /// Print the statistics as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The statistics of `mesh` in the chosen metric, and a one-line name of that metric.
+pub fn measure(a: &MeasureArgs, mesh: &UserMesh) -> Result<(Conformity, String)> {
+    match mesh {
+        UserMesh::Tri { points, cells, .. } => {
+            if a.ugawg.is_some() {
+                return Err(Error::InvalidInput(
+                    "--ugawg: the UGAWG metrics are 3D; this mesh is 2D".into(),
+                ));
+            }
+            let (m, name) = match &a.metric {
+                Some(p) => (read_metric2(p, mesh)?, p.display().to_string()),
+                None => (vec![Sym2::IDENTITY; points.len()], "Euclidean".into()),
+            };
+            Ok((conformity(points, cells, &m)?, name))
+        }
+        UserMesh::Tet { points, cells } => {
+            let (m, name) = match (&a.metric, &a.ugawg) {
+                (Some(p), _) => (read_metric3(p, mesh)?, p.display().to_string()),
+                (None, Some(c)) => {
+                    // Known everywhere: lengths integrated along the edges.
+                    let case = UgawgCase::parse(c)?;
+                    let metric = move |p| case.metric(p);
+                    let name = format!("UGAWG {} (lengths integrated along edges)", case.name());
+                    return Ok((conformity_analytic(points, cells, &metric)?, name));
+                }
+                (None, None) => (vec![Sym3::IDENTITY; points.len()], "Euclidean".into()),
+            };
+            Ok((conformity(points, cells, &m)?, name))
+        }
+    }
+}
+
+/// Prints the statistics in the text layout of `measure`.
+pub fn print_conformity(title: &str, c: &Conformity) {
+    println!("{title}");
+    println!(
+        "  edges {}  in [1/sqrt2, sqrt2] {:.2}%  length min {:.4} mean {:.4} max {:.4}",
+        c.edges,
+        100.0 * c.edge_length_in_range,
+        c.edge_length_min,
+        c.edge_length_mean,
+        c.edge_length_max
+    );
+    println!("  {}", histogram_line("length", &c.edge_length_histogram));
+    println!(
+        "  cells {}  inverted {}  Q_ani mean {:.4} worst {:.4} (cell {})",
+        c.cells, c.inverted, c.q_ani_mean, c.q_ani_max, c.worst_cell
+    );
+    println!("  {}", histogram_line("Q_ani", &c.q_ani_histogram));
+    println!(
+        "  mean ratio min {:.4} mean {:.4}",
+        c.mean_ratio_min, c.mean_ratio_mean
+    );
+    println!(
+        "  {}",
+        histogram_line("mean ratio", &c.mean_ratio_histogram)
+    );
+}
+
+fn histogram_line(name: &str, h: &[(f64, usize)]) -> String {
+    let total: usize = h.iter().map(|b| b.1).sum();
+    let mut line = format!("{name} histogram:");
+    for (upper, count) in h {
+        if *count > 0 {
+            line += &format!(
+                " <={upper:.3}: {:.1}%",
+                100.0 * *count as f64 / total.max(1) as f64
+            );
+        }
+    }
+    line
+}
+
+/// Runs `anisomesh measure`.
+pub fn run(a: MeasureArgs) -> Result<()> {
+    let mesh = read_user_mesh(&a.mesh)?;
+    let (c, name) = measure(&a, &mesh)?;
+    if a.json {
+        let v = serde_json::json!({
+            "mesh": a.mesh.display().to_string(),
+            "dimension": mesh.dim(),
+            "metric": name,
+            "conformity": c,
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v)
+                .map_err(|e| Error::InvalidInput(format!("JSON output: {e}")))?
+        );
+    } else {
+        print_conformity(
+            &format!(
+                "{}: {} in the metric {name}",
+                a.mesh.display(),
+                mesh.describe()
+            ),
+            &c,
+        );
+    }
+    Ok(())
+}
