@@ -11,6 +11,7 @@ mod metric_args;
 mod progress;
 mod redistance;
 mod shape;
+mod ugawg;
 mod user_files;
 
 use anisomesh::Result;
@@ -55,6 +56,9 @@ enum Command {
     /// Signed distance to the zero level of a user's level set (.sol) on a triangle or
     /// tetrahedral mesh: geometric (exact), PPR or fast marching.
     Redistance(redistance::RedistanceArgs),
+    /// A UGAWG benchmark case (cube-linear, cube-polar-1): the Kuhn starting mesh of [0,1]^3,
+    /// its metric (.sol) and its statistics in that metric.
+    Ugawg(ugawg::UgawgArgs),
     /// Converts a mesh between formats, chosen by extension (.mesh, .msh -> .mesh, .msh, .vtu).
     Convert {
         /// Input mesh (.mesh or .msh).
@@ -98,6 +102,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Bench(b)) => bench::run(b),
         Some(Command::Measure(a)) => measure::run(a),
         Some(Command::Redistance(a)) => redistance::run(a),
+        Some(Command::Ugawg(a)) => ugawg::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }
