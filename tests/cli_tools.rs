@@ -355,3 +355,157 @@ fn bad_inputs_are_one_line_errors() {
         "3D",
     );
 }
+
+fn on_path(tool: &str) -> bool {
+    Command::new(tool)
+        .arg("-h")
+        .output()
+        .map(|o| o.status.success() || !o.stdout.is_empty())
+        .unwrap_or(false)
+}
+
+/// The share of edges in range printed by `measure --json`.
+fn json_share(out: &str) -> f64 {
+    let v: serde_json::Value = serde_json::from_str(out).unwrap();
+    v["conformity"]["edge_length_in_range"].as_f64().unwrap()
+}
+
+#[test]
+fn metric_files_drive_our_adapt_and_mmg2d_and_measure_rates_both() {
+    let mesh = grid(40, -1.0, 1.0);
+    let m = tmp("circle40.mesh");
+    io::write_medit2(&m, &mesh).unwrap();
+    let met = tmp("circle40_metric.sol");
+    let flags = ["--eps", "1e-3", "--hmin", "0.005", "--hmax", "0.2"];
+    let mut args = vec![
+        "metric",
+        "--input",
+        s(&m),
+        "--expr",
+        "x^2 + y^2 - 0.25",
+        "-o",
+        s(&met),
+    ];
+    args.extend(flags);
+    ok(&anisomesh(&args));
+    // The metric at a vertex on the circle: size hmin across (the normal is radial).
+    let sol = io::read_sol(&met).unwrap();
+    let SolField::Tensor2(metric) = &sol.fields[0] else {
+        panic!("no tensor field")
+    };
+    let i = mesh
+        .points
+        .iter()
+        .position(|p| (p.length() - 0.5).abs() < 1e-12 && p.y.abs() < 1e-12)
+        .expect("vertex (0.5, 0)");
+    let h_normal = 1.0 / metric[i].xx.sqrt();
+    assert!((h_normal - 0.005).abs() < 0.001, "{h_normal}");
+    let dir = tmp("ours_adapt");
+    ok(&anisomesh(&[
+        "adapt",
+        "--input",
+        s(&m),
+        "--sol",
+        s(&met),
+        "-o",
+        s(&dir),
+    ]));
+    let ours = dir.join("circle40_adapted.mesh");
+    let rate = |mesh: &Path| {
+        json_share(&ok(&anisomesh(&[
+            "measure",
+            s(mesh),
+            "--metric",
+            s(&met),
+            "--metric-mesh",
+            s(&m),
+            "--json",
+        ])))
+    };
+    let share_ours = rate(&ours);
+    eprintln!("ours: {share_ours:.4} of the edges in [1/sqrt2, sqrt2] of the input metric");
+    assert!(share_ours > 0.7, "{share_ours}");
+    if !on_path("mmg2d_O3") {
+        eprintln!("mmg2d_O3 not on PATH: the mmg half of this test is skipped");
+        return;
+    }
+    let theirs = tmp("circle40_mmg.mesh");
+    let out = Command::new("mmg2d_O3")
+        .args([
+            "-in",
+            s(&m),
+            "-sol",
+            s(&met),
+            "-hgrad",
+            "-1",
+            "-out",
+            s(&theirs),
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "mmg2d_O3 refused our metric");
+    let share_mmg = rate(&theirs);
+    eprintln!("mmg2d_O3 (-hgrad -1): {share_mmg:.4} of the edges in range of the same metric");
+    assert!(share_mmg > 0.5, "{share_mmg}");
+}
+
+#[test]
+fn metric_on_tetrahedra_is_a_3d_tensor_field() {
+    let (mesh, m3) = kuhn_medit(12);
+    let mp = tmp("ball_metric.mesh");
+    io::write_medit3(&mp, &m3).unwrap();
+    let out_path = tmp("ball_metric.sol");
+    ok(&anisomesh(&[
+        "metric",
+        "--input",
+        s(&mp),
+        "--expr",
+        "(x-0.5)^2 + (y-0.5)^2 + (z-0.5)^2 - 0.09",
+        "--hmin",
+        "0.01",
+        "--eps",
+        "1e-3",
+        "-o",
+        s(&out_path),
+    ]));
+    let sol = io::read_sol(&out_path).unwrap();
+    assert_eq!(sol.dim, 3);
+    let SolField::Tensor3(t) = &sol.fields[0] else {
+        panic!("no 3D tensor field")
+    };
+    assert_eq!(t.len(), mesh.n_points());
+    // Far from the sphere (a corner, distance 0.566) the sizes reach hmax.
+    let m0 = io::sym3_from_file(&t[0]);
+    assert!((1.0 / m0.xx.sqrt() - 0.2).abs() < 1e-9, "{m0:?}");
+    // The 3D metric cannot be graded or targeted (2D only): one-line error.
+    assert_clean_error(
+        &anisomesh(&[
+            "metric",
+            "--input",
+            s(&mp),
+            "--expr",
+            "x - 0.5",
+            "--hgrad",
+            "1.3",
+            "-o",
+            s(&out_path),
+        ]),
+        "2D only",
+    );
+    if on_path("mmg3d_O3") {
+        let out = Command::new("mmg3d_O3")
+            .args([
+                "-in",
+                s(&mp),
+                "-sol",
+                s(&out_path),
+                "-out",
+                s(&tmp("ball_mmg.mesh")),
+            ])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "mmg3d_O3 refused our 3D metric");
+        let rated = ok(&anisomesh(&["measure", s(&tmp("ball_mmg.mesh")), "--json"]));
+        assert!(json_share(&rated) >= 0.0);
+    }
+}

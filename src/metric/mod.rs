@@ -18,8 +18,10 @@
 //! - [`levelset`]: the geometric metric of 004 eq. (6) and [`MetricBounds`].
 //! - [`conformity`](mod@conformity): edge lengths, `Q_ani` and mean ratio of a triangle or
 //!   tetrahedral mesh in a metric field (the measures of `anisomesh measure`).
+//! - [`band`]: eq. (6) with bounds and growth outside a band, for `Sym2` and `Sym3`.
 //! - [`ugawg`]: the UGAWG analytic 3D metric fields cube-linear and cube-polar-1.
 
+pub mod band;
 pub mod complexity;
 pub mod conformity;
 pub mod field;

@@ -3,9 +3,10 @@
 //! ratio ([`anisomesh::metric::conformity`]); without a metric, in the Euclidean metric.
 
 use super::user_files::{read_metric2, read_metric3, read_user_mesh, UserMesh};
+use anisomesh::metric::interpolate_log;
 use anisomesh::metric::ugawg::UgawgCase;
 use anisomesh::metric::{conformity, conformity_analytic, Conformity, Sym2, Sym3};
-use anisomesh::{Error, Result};
+use anisomesh::{DVec2, Error, Location, Mesh2, Result};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -14,9 +15,15 @@ use std::path::PathBuf;
 pub struct MeasureArgs {
     /// The mesh (.mesh 2D or 3D, .msh).
     pub mesh: PathBuf,
-    /// A metric on the mesh's vertices (.sol, symmetric tensors).
+    /// A metric on the mesh's vertices (.sol, symmetric tensors), or on the vertices of
+    /// --metric-mesh.
     #[arg(long, conflicts_with = "ugawg")]
     pub metric: Option<PathBuf>,
+    /// The 2D mesh the --metric file lives on (e.g. the input of an adaptation): the metric is
+    /// interpolated log-Euclidean at the measured vertices, so that meshes from different
+    /// adaptors are rated in the same metric field.
+    #[arg(long, requires = "metric")]
+    pub metric_mesh: Option<PathBuf>,
     /// A UGAWG analytic metric (3D): cube-linear or cube-polar-1; edge lengths are integrated
     /// along the edges in it.
     #[arg(long)]
@@ -35,13 +42,38 @@ pub fn measure(a: &MeasureArgs, mesh: &UserMesh) -> Result<(Conformity, String)>
                     "--ugawg: the UGAWG metrics are 3D; this mesh is 2D".into(),
                 ));
             }
-            let (m, name) = match &a.metric {
-                Some(p) => (read_metric2(p, mesh)?, p.display().to_string()),
-                None => (vec![Sym2::IDENTITY; points.len()], "Euclidean".into()),
+            let (m, name) = match (&a.metric, &a.metric_mesh) {
+                (Some(p), Some(r)) => {
+                    let reference = read_user_mesh(r)?;
+                    let on_ref = read_metric2(p, &reference)?;
+                    let UserMesh::Tri { mesh: rm, .. } = &reference else {
+                        return Err(Error::InvalidInput(format!(
+                            "--metric-mesh {}: a 2D mesh is needed",
+                            r.display()
+                        )));
+                    };
+                    if rm.n_live_tris() == 0 {
+                        return Err(Error::InvalidInput(format!(
+                            "--metric-mesh {}: no triangles",
+                            r.display()
+                        )));
+                    }
+                    (
+                        transfer(rm, &on_ref, points),
+                        format!("{} on {} (interpolated)", p.display(), r.display()),
+                    )
+                }
+                (Some(p), None) => (read_metric2(p, mesh)?, p.display().to_string()),
+                (None, _) => (vec![Sym2::IDENTITY; points.len()], "Euclidean".into()),
             };
             Ok((conformity(points, cells, &m)?, name))
         }
         UserMesh::Tet { points, cells } => {
+            if a.metric_mesh.is_some() {
+                return Err(Error::Unsupported(
+                    "--metric-mesh: interpolation between meshes is 2D only".into(),
+                ));
+            }
             let (m, name) = match (&a.metric, &a.ugawg) {
                 (Some(p), _) => (read_metric3(p, mesh)?, p.display().to_string()),
                 (None, Some(c)) => {
@@ -56,6 +88,30 @@ pub fn measure(a: &MeasureArgs, mesh: &UserMesh) -> Result<(Conformity, String)>
             Ok((conformity(points, cells, &m)?, name))
         }
     }
+}
+
+/// The metric `on_ref` of the mesh `reference` at `points`: log-Euclidean mean of the three
+/// vertex metrics of the containing triangle with the barycentric weights (a point outside the
+/// reference mesh takes the nearest triangle along the walk, weights clipped at 0).
+fn transfer(reference: &Mesh2, on_ref: &[Sym2], points: &[DVec2]) -> Vec<Sym2> {
+    let mut start = 0u32;
+    points
+        .iter()
+        .map(|&p| {
+            let loc = reference.locate(p, start);
+            let (t, bary) = match loc {
+                Location::Inside { tri, bary } | Location::Outside { tri, bary } => (tri, bary),
+            };
+            start = t;
+            let w = bary.map(|b| b.max(0.0));
+            let sum: f64 = w.iter().sum();
+            let v = reference.tris[t as usize];
+            let items: Vec<(f64, Sym2)> = (0..3)
+                .map(|k| (w[k] / sum, on_ref[v[k] as usize]))
+                .collect();
+            interpolate_log(&items)
+        })
+        .collect()
 }
 
 /// Prints the statistics in the text layout of `measure`.

@@ -7,6 +7,7 @@ mod convert;
 mod flows;
 mod info;
 mod measure;
+mod metric;
 mod metric_args;
 mod progress;
 mod redistance;
@@ -53,6 +54,9 @@ enum Command {
     /// Edge lengths, Q_ani and mean ratio of a triangle or tetrahedral mesh in a metric (.sol or
     /// a UGAWG analytic field).
     Measure(measure::MeasureArgs),
+    /// The metric of a user's level set (.sol or expression) on a triangle or tetrahedral
+    /// mesh, written as a Medit tensor field (.sol) for mmg2d/mmg3d or `adapt --sol`.
+    Metric(metric::MetricCmdArgs),
     /// Signed distance to the zero level of a user's level set (.sol) on a triangle or
     /// tetrahedral mesh: geometric (exact), PPR or fast marching.
     Redistance(redistance::RedistanceArgs),
@@ -101,6 +105,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Bench(b)) => bench::run(b),
         Some(Command::Measure(a)) => measure::run(a),
+        Some(Command::Metric(a)) => metric::run(a),
         Some(Command::Redistance(a)) => redistance::run(a),
         Some(Command::Ugawg(a)) => ugawg::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
