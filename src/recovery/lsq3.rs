@@ -133,7 +133,7 @@ fn fit(i: usize, points: &[DVec3], u: &[f64], p: &[u32]) -> Option<(DVec3, Sym3)
 ///
 /// Errors: [`Error::InvalidField`] if `u` does not hold one finite value per point;
 /// [`Error::InvalidInput`] for a cell vertex out of range or a vertex whose patch (after
-/// [`MAX_RINGS`] rings) cannot determine a quadratic (fewer than nine neighbours, or all of them
+/// three rings) cannot determine a quadratic (fewer than nine neighbours, or all of them
 /// on a quadric through the vertex).
 pub fn recover_ls3(points: &[DVec3], cells: &[[u32; 4]], u: &[f64]) -> Result<Recovered3> {
     check_p1_field(points.len(), u, "u")?;
