@@ -425,6 +425,34 @@ fn metric_files_drive_our_adapt_and_mmg2d_and_measure_rates_both() {
     let share_ours = rate(&ours);
     eprintln!("ours: {share_ours:.4} of the edges in [1/sqrt2, sqrt2] of the input metric");
     assert!(share_ours > 0.7, "{share_ours}");
+    // The zero level of the input level set interpolated on the adapted mesh, against the
+    // input's own (a 40² grid: its polygon is the reference).
+    let u: Vec<f64> = mesh
+        .points
+        .iter()
+        .map(|p| p.length_squared() - 0.25)
+        .collect();
+    let up = tmp("circle40_u.sol");
+    io::write_sol(&up, &Sol::scalar(u)).unwrap();
+    let cmp = |mesh: &Path| {
+        let out = ok(&anisomesh(&[
+            "measure",
+            s(mesh),
+            "--against",
+            s(&m),
+            "--sol",
+            s(&up),
+            "--json",
+        ]));
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        (
+            v["against"]["hausdorff"].as_f64().unwrap(),
+            v["against"]["relative_area_error"].as_f64().unwrap(),
+        )
+    };
+    let (h_ours, a_ours) = cmp(&ours);
+    eprintln!("ours against the input zero level: Hausdorff {h_ours:.3e}, area {a_ours:.2e}");
+    assert!(h_ours < 0.01 && a_ours < 0.01, "{h_ours} {a_ours}");
     if !on_path("mmg2d_O3") {
         eprintln!("mmg2d_O3 not on PATH: the mmg half of this test is skipped");
         return;
@@ -445,8 +473,13 @@ fn metric_files_drive_our_adapt_and_mmg2d_and_measure_rates_both() {
         .unwrap();
     assert!(out.status.success(), "mmg2d_O3 refused our metric");
     let share_mmg = rate(&theirs);
-    eprintln!("mmg2d_O3 (-hgrad -1): {share_mmg:.4} of the edges in range of the same metric");
+    let (h_mmg, a_mmg) = cmp(&theirs);
+    eprintln!(
+        "mmg2d_O3 (-hgrad -1): {share_mmg:.4} of the edges in range of the same metric; \
+         Hausdorff {h_mmg:.3e}, area {a_mmg:.2e}"
+    );
     assert!(share_mmg > 0.5, "{share_mmg}");
+    assert!(h_mmg < 0.01 && a_mmg < 0.01, "{h_mmg} {a_mmg}");
 }
 
 #[test]

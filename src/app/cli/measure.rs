@@ -1,8 +1,11 @@
 //! `anisomesh measure MESH [--metric METRIC.sol | --ugawg CASE] [--json]`: how well a triangle or
 //! tetrahedral mesh conforms to a metric — edge lengths in the metric, `Q_ani` and the mean
-//! ratio ([`anisomesh::metric::conformity`]); without a metric, in the Euclidean metric.
+//! ratio ([`anisomesh::metric::conformity`]); without a metric, in the Euclidean metric. With
+//! `--against REF.mesh --sol U.sol` (2D), the distance between the zero levels and the area error
+//! ([`anisomesh::levelset::compare`]).
 
-use super::user_files::{read_metric2, read_metric3, read_user_mesh, UserMesh};
+use super::user_files::{read_metric2, read_metric3, read_scalar, read_user_mesh, UserMesh};
+use anisomesh::levelset::compare::{compare_zero_levels, interpolate_p1, ZeroLevelComparison};
 use anisomesh::metric::interpolate_log;
 use anisomesh::metric::ugawg::UgawgCase;
 use anisomesh::metric::{conformity, conformity_analytic, Conformity, Sym2, Sym3};
@@ -28,6 +31,17 @@ pub struct MeasureArgs {
     /// along the edges in it.
     #[arg(long)]
     pub ugawg: Option<String>,
+    /// A reference 2D mesh with its level set (--sol): compare the zero levels (sampled
+    /// Hausdorff distance, enclosed area).
+    #[arg(long, requires = "sol")]
+    pub against: Option<PathBuf>,
+    /// The reference level set on --against's vertices (.sol, scalar).
+    #[arg(long, requires = "against")]
+    pub sol: Option<PathBuf>,
+    /// The measured mesh's own level set (.sol, scalar); default: the reference's interpolated
+    /// at its vertices.
+    #[arg(long, requires = "against")]
+    pub level_set: Option<PathBuf>,
     /// Print the statistics as JSON.
     #[arg(long)]
     pub json: bool,
@@ -155,16 +169,41 @@ fn histogram_line(name: &str, h: &[(f64, usize)]) -> String {
     line
 }
 
+/// The zero-level comparison of `--against`, if asked.
+fn against(a: &MeasureArgs, mesh: &UserMesh) -> Result<Option<ZeroLevelComparison>> {
+    let (Some(r), Some(u_path)) = (&a.against, &a.sol) else {
+        return Ok(None);
+    };
+    let (UserMesh::Tri { mesh: m, .. }, reference) = (mesh, read_user_mesh(r)?) else {
+        return Err(Error::Unsupported(
+            "--against: the zero-level comparison is 2D only".into(),
+        ));
+    };
+    let u = read_scalar(u_path, &reference)?;
+    let UserMesh::Tri { mesh: rm, .. } = &reference else {
+        return Err(Error::Unsupported(
+            "--against: the zero-level comparison is 2D only".into(),
+        ));
+    };
+    let v = match &a.level_set {
+        Some(p) => read_scalar(p, mesh)?,
+        None => interpolate_p1(rm, &u, &m.points)?,
+    };
+    Ok(Some(compare_zero_levels(m, &v, rm, &u)?))
+}
+
 /// Runs `anisomesh measure`.
 pub fn run(a: MeasureArgs) -> Result<()> {
     let mesh = read_user_mesh(&a.mesh)?;
     let (c, name) = measure(&a, &mesh)?;
+    let cmp = against(&a, &mesh)?;
     if a.json {
         let v = serde_json::json!({
             "mesh": a.mesh.display().to_string(),
             "dimension": mesh.dim(),
             "metric": name,
             "conformity": c,
+            "against": cmp,
         });
         println!(
             "{}",
@@ -180,6 +219,22 @@ pub fn run(a: MeasureArgs) -> Result<()> {
             ),
             &c,
         );
+        if let Some(z) = cmp {
+            println!(
+                "zero level against {}: Hausdorff {:.3e} (to {:.3e}, from {:.3e}); area {:.10} vs \
+                 {:.10} (relative error {:.2e})",
+                a.against
+                    .as_deref()
+                    .unwrap_or(std::path::Path::new(""))
+                    .display(),
+                z.hausdorff,
+                z.to_reference_max,
+                z.from_reference_max,
+                z.area,
+                z.reference_area,
+                z.relative_area_error
+            );
+        }
     }
     Ok(())
 }
