@@ -354,6 +354,25 @@ fn bad_inputs_are_one_line_errors() {
         &anisomesh(&["measure", s(&m), "--ugawg", "cube-linear"]),
         "3D",
     );
+    // A metric of a level set without zero level; a metric that is not SPD.
+    assert_clean_error(
+        &anisomesh(&["metric", "--input", s(&m), "--expr", "1 + x^2", "-o", s(&o)]),
+        "no zero level",
+    );
+    let neg = tmp("neg.sol");
+    io::write_sol(
+        &neg,
+        &Sol::metric(vec![anisomesh::Sym2::new(1.0, 0.0, -1.0); mesh.n_points()]),
+    )
+    .unwrap();
+    assert_clean_error(
+        &anisomesh(&["measure", s(&m), "--metric", s(&neg)]),
+        "not a metric",
+    );
+    assert_clean_error(
+        &anisomesh(&["ugawg", "cube-linear", "--n", "0", "-o", s(&tmp("ug0"))]),
+        "--n 0",
+    );
 }
 
 fn on_path(tool: &str) -> bool {
