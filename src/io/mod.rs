@@ -23,7 +23,9 @@ pub use medit::{
     write_medit3, Medit3,
 };
 pub use obj::{parse_obj, read_obj, SurfaceMesh};
-pub use sol::{parse_sol, read_sol, read_sol_for, write_sol, Sol, SolField};
+pub use sol::{
+    parse_sol, read_sol, read_sol_for, sym3_from_file, sym3_to_file, write_sol, Sol, SolField,
+};
 pub use vtk::{write_vtu, FieldRef};
 
 use crate::error::{Error, MeshDefect, Result};

@@ -9,7 +9,7 @@ use super::atomic::atomic_write;
 use super::medit::{is_keyword, read_header_keyword, skip_section};
 use super::tokens::{fmt_f64, read_text, shorten, Tokens};
 use crate::error::{Error, Result};
-use crate::metric::Sym2;
+use crate::metric::{Sym2, Sym3};
 use std::path::Path;
 
 /// One field of a solution file, one entry per vertex.
@@ -95,10 +95,37 @@ impl Sol {
         }
     }
 
+    /// A 3D solution with one metric (tensor) field, written in the Medit order
+    /// `xx xy yy xz yz zz`.
+    pub fn metric3(values: &[Sym3]) -> Sol {
+        Sol {
+            dim: 3,
+            fields: vec![SolField::Tensor3(values.iter().map(sym3_to_file).collect())],
+        }
+    }
+
+    /// A solution of dimension `dim` with one scalar field.
+    pub fn scalar_dim(dim: usize, values: Vec<f64>) -> Sol {
+        Sol {
+            dim,
+            fields: vec![SolField::Scalar(values)],
+        }
+    }
+
     /// Number of vertices (0 without fields).
     pub fn n_vertices(&self) -> usize {
         self.fields.first().map_or(0, SolField::len)
     }
+}
+
+/// The 3D tensor of a `.sol` entry in file order `[xx, xy, yy, xz, yz, zz]`.
+pub fn sym3_from_file(a: &[f64; 6]) -> Sym3 {
+    Sym3::new(a[0], a[1], a[3], a[2], a[4], a[5])
+}
+
+/// The file order `[xx, xy, yy, xz, yz, zz]` of a 3D tensor.
+pub fn sym3_to_file(m: &Sym3) -> [f64; 6] {
+    [m.xx, m.xy, m.yy, m.xz, m.yz, m.zz]
 }
 
 /// Parses a `.sol` text; with `expected = Some(n)` the vertex count must be `n` (the error

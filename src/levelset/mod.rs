@@ -3,6 +3,7 @@
 //! Sign convention (004 §2.1): a level-set function is negative inside and positive outside.
 
 mod arcpoly;
+pub mod compare;
 pub mod expr;
 pub mod interface;
 pub mod measure;

@@ -16,8 +16,14 @@
 //! - [`field`]: whole-field checks ([`validate_field`]).
 //! - [`sym3`]: `Sym3`, the 3D metric (nalgebra eigen).
 //! - [`levelset`]: the geometric metric of 004 eq. (6) and [`MetricBounds`].
+//! - [`conformity`](mod@conformity): edge lengths, `Q_ani` and mean ratio of a triangle or
+//!   tetrahedral mesh in a metric field (the measures of `anisomesh measure`).
+//! - [`band`]: eq. (6) with bounds and growth outside a band, for `Sym2` and `Sym3`.
+//! - [`ugawg`]: the UGAWG analytic 3D metric fields cube-linear and cube-polar-1.
 
+pub mod band;
 pub mod complexity;
+pub mod conformity;
 pub mod field;
 pub mod from_hessian;
 pub mod gradation;
@@ -28,8 +34,10 @@ pub mod levelset;
 pub mod sym;
 pub mod sym3;
 pub mod tensor;
+pub mod ugawg;
 
 pub use complexity::{complexity, predicted_vertices};
+pub use conformity::{conformity, conformity_analytic, Conformity};
 pub use field::validate_field;
 pub use from_hessian::{interpolation_error_metric_iso, lp_metric, multiscale_lp, LpReport};
 pub use gradation::gradate;

@@ -6,9 +6,14 @@ mod bench;
 mod convert;
 mod flows;
 mod info;
+mod measure;
+mod metric;
 mod metric_args;
 mod progress;
+mod redistance;
 mod shape;
+mod ugawg;
+mod user_files;
 
 use anisomesh::Result;
 use clap::{Parser, Subcommand};
@@ -46,6 +51,18 @@ enum Command {
         #[arg(long)]
         sol: Option<PathBuf>,
     },
+    /// Edge lengths, Q_ani and mean ratio of a triangle or tetrahedral mesh in a metric (.sol or
+    /// a UGAWG analytic field).
+    Measure(measure::MeasureArgs),
+    /// The metric of a user's level set (.sol or expression) on a triangle or tetrahedral
+    /// mesh, written as a Medit tensor field (.sol) for mmg2d/mmg3d or `adapt --sol`.
+    Metric(metric::MetricCmdArgs),
+    /// Signed distance to the zero level of a user's level set (.sol) on a triangle or
+    /// tetrahedral mesh: geometric (exact), PPR or fast marching.
+    Redistance(redistance::RedistanceArgs),
+    /// A UGAWG benchmark case (cube-linear, cube-polar-1): the Kuhn starting mesh of [0,1]^3,
+    /// its metric (.sol) and its statistics in that metric.
+    Ugawg(ugawg::UgawgArgs),
     /// Converts a mesh between formats, chosen by extension (.mesh, .msh -> .mesh, .msh, .vtu).
     Convert {
         /// Input mesh (.mesh or .msh).
@@ -87,6 +104,10 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Bench(b)) => bench::run(b),
+        Some(Command::Measure(a)) => measure::run(a),
+        Some(Command::Metric(a)) => metric::run(a),
+        Some(Command::Redistance(a)) => redistance::run(a),
+        Some(Command::Ugawg(a)) => ugawg::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

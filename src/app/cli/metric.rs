@@ -1,0 +1,188 @@
+//! `anisomesh metric --input M.mesh (--sol U.sol | --expr E) [--eps --hmin --hmax --band --grade
+//! | --target-vertices N] [--hgrad G] -o METRIC.sol`: the metric of a level set on a user's
+//! triangle or tetrahedral mesh, written as a Medit tensor field (what `mmg2d_O3` / `mmg3d_O3
+//! -in M.mesh -sol METRIC.sol` read).
+//!
+//! Level set → metric: the exact distance to the P1 zero level (004 §2.2), its gradient and
+//! Hessian by least squares (004 §4.3; [`anisomesh::recovery::recover_ls3`] on tetrahedra), then
+//! 004 eq. (6) with the size bounds and the growth outside the band of `adapt`'s
+//! [`LevelSetMetric`] (same defaults, same flags). With `--target-vertices` (2D), `adapt`'s
+//! multiscale L2 Hessian metric ([`HessianMetric`]) of the field itself.
+
+use super::measure::print_conformity;
+use super::metric_args::MetricArgs;
+use super::user_files::{read_scalar, read_user_mesh, UserMesh};
+use anisomesh::adapt::{HessianMetric, LevelSetMetric};
+use anisomesh::io::{self, Sol};
+use anisomesh::levelset::redistance::{redistance_geometric, redistance_geometric_cells};
+use anisomesh::levelset::{Expr, Variables};
+use anisomesh::metric::band::{banded_metric, BandedMetric};
+use anisomesh::metric::{complexity, conformity, gradate, predicted_vertices, Sym2, Sym3};
+use anisomesh::recovery::{recover_ls, recover_ls3};
+use anisomesh::{Error, Mesh2, Result};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Options of `anisomesh metric`.
+#[derive(Debug, Args)]
+pub struct MetricCmdArgs {
+    /// The mesh (.mesh 2D or 3D, .msh).
+    #[arg(long)]
+    pub input: PathBuf,
+    /// The level set on the mesh's vertices (.sol, one scalar per vertex).
+    #[arg(long, conflicts_with = "expr", required_unless_present = "expr")]
+    pub sol: Option<PathBuf>,
+    /// The level set as an expression in x, y (and z on a 3D mesh), negative inside.
+    #[arg(long)]
+    pub expr: Option<String>,
+    /// The geometric metric's accuracy, sizes, band and growth (as for `adapt`).
+    #[command(flatten)]
+    pub metric: MetricArgs,
+    /// The multiscale L2 Hessian metric of the field with this many target vertices (2D).
+    #[arg(long, conflicts_with = "band")]
+    pub target_vertices: Option<usize>,
+    /// Grade the metric with this growth factor (> 1, as mmg's -hgrad; 2D).
+    #[arg(long)]
+    pub hgrad: Option<f64>,
+    /// Output .sol.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// The level set at the vertices: read from `--sol` or evaluated from `--expr`.
+fn level_set(a: &MetricCmdArgs, mesh: &UserMesh) -> Result<Vec<f64>> {
+    let u = match (&a.sol, &a.expr, mesh) {
+        (Some(p), _, _) => return read_scalar(p, mesh),
+        (None, Some(e), UserMesh::Tri { points, .. }) => {
+            let e = Expr::parse(e)?;
+            points.iter().map(|&p| e.eval(p)).collect::<Vec<f64>>()
+        }
+        (None, Some(e), UserMesh::Tet { points, .. }) => {
+            let e = Expr::parse_with(e, Variables::XYZ)?;
+            points.iter().map(|&p| e.eval3(p)).collect()
+        }
+        (None, None, _) => {
+            return Err(Error::InvalidInput(
+                "metric: give the level set with --sol or --expr".into(),
+            ))
+        }
+    };
+    if let Some(v) = u.iter().position(|x| !x.is_finite()) {
+        return Err(Error::InvalidInput(format!(
+            "--expr: non-finite value {} at vertex {}",
+            u[v],
+            v + 1
+        )));
+    }
+    Ok(u)
+}
+
+/// The 2D metric field (module documentation).
+pub fn metric2(
+    mesh: &Mesh2,
+    u: &[f64],
+    lm: &LevelSetMetric,
+    target: Option<usize>,
+) -> Result<Vec<Sym2>> {
+    lm.validate()?;
+    match target {
+        Some(n) => HessianMetric {
+            target_vertices: n,
+            hmin: lm.hmin,
+            hmax: lm.hmax,
+            ..HessianMetric::default()
+        }
+        .field(mesh, u),
+        None => {
+            let d = redistance_geometric(mesh, u)?;
+            let rec = recover_ls(mesh, &d)?;
+            Ok((0..d.len())
+                .map(|v| lm.metric(d[v], rec.gradient[v], &rec.hessian[v]))
+                .collect())
+        }
+    }
+}
+
+/// The 3D metric field (module documentation).
+pub fn metric3(
+    points: &[anisomesh::DVec3],
+    cells: &[[u32; 4]],
+    u: &[f64],
+    lm: &LevelSetMetric,
+) -> Result<Vec<Sym3>> {
+    lm.validate()?;
+    let d = redistance_geometric_cells(points, cells, u)?;
+    let rec = recover_ls3(points, cells, &d)?;
+    let p = BandedMetric {
+        eps: lm.eps,
+        bounds: lm.bounds(),
+        band: lm.band,
+        grade: lm.grade,
+    };
+    Ok((0..d.len())
+        .map(|v| banded_metric(&p, d[v], rec.gradient[v], &rec.hessian[v]))
+        .collect())
+}
+
+/// Runs `anisomesh metric`.
+pub fn run(a: MetricCmdArgs) -> Result<()> {
+    let lm = a.metric.apply(LevelSetMetric::default());
+    let mesh = read_user_mesh(&a.input)?;
+    let u = level_set(&a, &mesh)?;
+    let (lo, hi) = u
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
+            (l.min(x), h.max(x))
+        });
+    if lo > 0.0 || hi < 0.0 {
+        return Err(Error::EmptyLevelSet(format!(
+            "the level set has no zero level on the mesh (values in [{lo:.3e}, {hi:.3e}])"
+        )));
+    }
+    match &mesh {
+        UserMesh::Tri {
+            points,
+            cells,
+            mesh,
+        } => {
+            let mut m = metric2(mesh, &u, &lm, a.target_vertices)?;
+            if let Some(g) = a.hgrad {
+                gradate(mesh, &mut m, g)?;
+            }
+            io::write_sol(&a.output, &Sol::metric(m.clone()))?;
+            println!(
+                "metric of {}: {} ; predicts about {:.0} vertices",
+                a.input.display(),
+                mesh_kind(&a),
+                predicted_vertices(complexity(mesh, &m))
+            );
+            print_conformity(
+                "the input mesh in this metric",
+                &conformity(points, cells, &m)?,
+            );
+        }
+        UserMesh::Tet { points, cells } => {
+            if a.target_vertices.is_some() || a.hgrad.is_some() {
+                return Err(Error::Unsupported(
+                    "metric: --target-vertices and --hgrad are 2D only".into(),
+                ));
+            }
+            let m = metric3(points, cells, &u, &lm)?;
+            io::write_sol(&a.output, &Sol::metric3(&m))?;
+            println!("metric of {}: {}", a.input.display(), mesh_kind(&a));
+            print_conformity(
+                "the input mesh in this metric",
+                &conformity(points, cells, &m)?,
+            );
+        }
+    }
+    println!("wrote {}", a.output.display());
+    Ok(())
+}
+
+fn mesh_kind(a: &MetricCmdArgs) -> String {
+    match a.target_vertices {
+        Some(n) => format!("multiscale L2 Hessian metric, target {n} vertices"),
+        None => "geometric metric 004 eq. (6) of the distance to the zero level".into(),
+    }
+}

@@ -1,0 +1,78 @@
+//! `anisomesh ugawg cube-linear|cube-polar-1 [--n N] -o DIR`: the starting mesh of a UGAWG
+//! benchmark (the Kuhn mesh of `[0,1]³` with `N` cubes per side), its metric at the vertices as a
+//! Medit `.sol` (what `mmg3d_O3 -in DIR/CASE.mesh -sol DIR/CASE.sol` reads), and the UGAWG
+//! statistics of that mesh in the analytic metric.
+
+use super::measure::print_conformity;
+use anisomesh::io::{self, Medit3, Sol};
+use anisomesh::mesh3::Mesh3;
+use anisomesh::metric::conformity_analytic;
+use anisomesh::metric::ugawg::UgawgCase;
+use anisomesh::{DVec3, Error, Result};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Options of `anisomesh ugawg`.
+#[derive(Debug, Args)]
+pub struct UgawgArgs {
+    /// cube-linear or cube-polar-1.
+    pub case: String,
+    /// Cubes per side of the Kuhn mesh (6 tetrahedra each).
+    #[arg(long, default_value_t = 10)]
+    pub n: usize,
+    /// Output directory (written: CASE.mesh, CASE.sol).
+    #[arg(short, long, default_value = "out")]
+    pub output: PathBuf,
+}
+
+/// The Medit form of a tetrahedral mesh: its tetrahedra and labelled boundary triangles.
+pub fn to_medit3(m: &Mesh3) -> Medit3 {
+    let (tris, tri_ref): (Vec<[u32; 3]>, Vec<i32>) = m
+        .boundary_faces()
+        .map(|(t, i)| (m.face_vertices(t, i), m.face_ref[t][i]))
+        .unzip();
+    Medit3 {
+        points: m.points.clone(),
+        point_ref: vec![0; m.points.len()],
+        tets: m.tets.clone(),
+        tet_ref: m.tet_ref.clone(),
+        tris,
+        tri_ref,
+    }
+}
+
+/// Runs `anisomesh ugawg`.
+pub fn run(a: UgawgArgs) -> Result<()> {
+    let case = UgawgCase::parse(&a.case)?;
+    if !(1..=200).contains(&a.n) {
+        return Err(Error::InvalidInput(format!(
+            "--n {}: expected 1 to 200 cubes per side",
+            a.n
+        )));
+    }
+    let mesh = Mesh3::kuhn_box(DVec3::ZERO, DVec3::ONE, [a.n; 3])?;
+    std::fs::create_dir_all(&a.output).map_err(|e| Error::Io {
+        path: a.output.clone(),
+        source: e,
+    })?;
+    let mesh_path = a.output.join(format!("{}.mesh", case.name()));
+    let sol_path = a.output.join(format!("{}.sol", case.name()));
+    io::write_medit3(&mesh_path, &to_medit3(&mesh))?;
+    io::write_sol(&sol_path, &Sol::metric3(&case.field(&mesh.points)))?;
+    let metric = move |p| case.metric(p);
+    let c = conformity_analytic(&mesh.points, &mesh.tets, &metric)?;
+    print_conformity(
+        &format!(
+            "{}: Kuhn mesh {n}x{n}x{n}, {} vertices, {} tetrahedra, in the metric {}",
+            case.name(),
+            mesh.n_points(),
+            mesh.n_tets(),
+            case.name(),
+            n = a.n
+        ),
+        &c,
+    );
+    println!("wrote {}", mesh_path.display());
+    println!("wrote {}", sol_path.display());
+    Ok(())
+}
