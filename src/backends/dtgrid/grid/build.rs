@@ -307,3 +307,46 @@ fn leaf_runs(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn more_than_u32_nodes_is_too_large() {
+        // Two lines of 2^31 nodes each: 2^32 nodes, one beyond the limit.
+        let mut b = Builder::<[i32; 2]>::new();
+        let len = 1u32 << 31;
+        b.push_run(Run {
+            c: [0, -(1 << 30), 0],
+            len,
+        })
+        .unwrap();
+        let r = b.push_run(Run {
+            c: [1, -(1 << 30), 0],
+            len,
+        });
+        assert!(matches!(r, Err(Error::TooLarge(_))), "{r:?}");
+    }
+
+    #[test]
+    fn runs_push_like_nodes() {
+        // Touching runs merge into one; the grid equals the node-by-node build.
+        let mut a = Builder::<[i32; 3]>::new();
+        let mut b = Builder::<[i32; 3]>::new();
+        for (c, len) in [
+            ([0, 0, 3], 2u32),
+            ([0, 0, 5], 1),
+            ([0, 2, -1], 4),
+            ([3, 0, 0], 1),
+        ] {
+            a.push_run(Run { c, len }).unwrap();
+            for k in 0..len as i32 {
+                b.push([c[0], c[1], c[2] + k]).unwrap();
+            }
+        }
+        let (a, b) = (a.finish(), b.finish());
+        assert_eq!(a, b);
+        assert_eq!(a.runs(), 3);
+    }
+}
