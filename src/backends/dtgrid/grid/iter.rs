@@ -114,6 +114,8 @@ pub struct CellIter<'a, C: DtCoord> {
     /// Cursors finding the lines at prefix offsets `e ∈ {0,1}^(d−1)`, `e ≠ 0`.
     sec: Vec<Cursor>,
     lines: [LineWalk; 4],
+    /// Per corner line, node index minus coordinate on the current interval's runs.
+    bases: [u32; 4],
     started: bool,
     active: bool,
     x: i32,
@@ -130,6 +132,7 @@ impl<'a, C: DtCoord> CellIter<'a, C> {
             sec: vec![prim.clone(); (1 << depth) - 1],
             prim,
             lines: [LineWalk::default(); 4],
+            bases: [0; 4],
             started: false,
             active: false,
             x: 0,
@@ -170,6 +173,9 @@ impl<'a, C: DtCoord> CellIter<'a, C> {
                 }
             }
             if ok {
+                for (b, w) in self.bases.iter_mut().zip(&self.lines[..nl]) {
+                    *b = last.acc[w.r].wrapping_sub(last.starts[w.r] as u32);
+                }
                 self.x = lo;
                 self.hi = hi;
                 return true;
@@ -215,13 +221,12 @@ impl<C: DtCoord> Iterator for CellIter<'_, C> {
         loop {
             if self.active {
                 if self.x <= self.hi {
-                    let last = self.g.last();
                     let x = self.x;
                     let mut cell = C::empty_cell();
+                    let mask = (1 << (d - 1)) - 1;
                     for (c, v) in cell.as_mut().iter_mut().enumerate() {
-                        let w = self.lines[c & (self.nl() - 1)];
                         let dx = ((c >> (d - 1)) & 1) as u32;
-                        *v = last.acc[w.r] + (x - last.starts[w.r]) as u32 + dx;
+                        *v = self.bases[c & mask].wrapping_add(x as u32) + dx;
                     }
                     let mut lo = self.prim.x;
                     lo[d - 1] = x;
