@@ -20,6 +20,9 @@ pub enum Bench {
     Peers(PeersArgs),
     /// Geometric redistancing speed (004 §2.2): an n x n grid of [-1, 1]^2 and four circles.
     Redistance(RedistanceArgs),
+    /// DT-Grid storage (000 §3): memory and build time of a sphere band, a streaming cell
+    /// pass, and OpenVDB holding the same voxels in the same run.
+    Band(crate::app::repro::band_memory::BandArgs),
 }
 
 /// Options of `anisomesh bench speed`.
@@ -77,6 +80,7 @@ pub fn run(b: Bench) -> Result<()> {
         Bench::Speed(a) => speed(a),
         Bench::Peers(a) => peers(a),
         Bench::Redistance(a) => redistance(a),
+        Bench::Band(a) => crate::app::repro::band_memory::run(a),
     }
 }
 

@@ -4,5 +4,7 @@
 //! Files: `band.rs` (the [`Band`] seam between storage and finite elements).
 
 mod band;
+pub mod grid;
 
 pub use band::{Band, GridCoord};
+pub use grid::{DtCoord, DtGrid, Implicit};
