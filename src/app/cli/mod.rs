@@ -9,6 +9,7 @@ mod info;
 mod metric_args;
 mod progress;
 mod shape;
+mod triangulate;
 
 use anisomesh::Result;
 use clap::{Parser, Subcommand};
@@ -53,6 +54,8 @@ enum Command {
         /// Output mesh (.mesh, .msh or .vtu).
         output: PathBuf,
     },
+    /// Writes a closed triangulation (OBJ) of a built-in surface: star, sphere or torus.
+    Triangulate(triangulate::TriangulateArgs),
     /// Evaluates a level set on a mesh's vertices and writes it (.sol or .vtu).
     Shape {
         /// A built-in shape: circle, zalesak or flower.
@@ -87,6 +90,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Bench(b)) => bench::run(b),
+        Some(Command::Triangulate(a)) => triangulate::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }
