@@ -346,3 +346,32 @@ fn million_queries_speed() {
         rayon::current_num_threads()
     );
 }
+
+/// The shipped star meshes (`meshes/star.obj`, level 6, and `meshes/star_coarse.obj`, level 4,
+/// written by `anisomesh triangulate`) read back as closed, outward surfaces with the volume
+/// errors of their levels, and their distance vanishes on the exact star (within the chord
+/// error) along the axes.
+#[test]
+fn shipped_star_meshes_are_valid() {
+    let exact = StarSurface::PAPER.exact_area().unwrap();
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes");
+    for (file, triangles, max_err) in [
+        ("star.obj", 81920, 2.2e-3),
+        ("star_coarse.obj", 5120, 3.3e-2),
+    ] {
+        let mesh = anisomesh::io::read_obj(&dir.join(file)).unwrap();
+        assert_eq!(mesh.tris.len(), triangles);
+        let star = TriangulatedShape::from_mesh(&mesh).unwrap();
+        assert_eq!(star.flipped_triangles(), 0, "{file}");
+        assert_eq!(star.components(), 1);
+        let err = (star.volume() - exact).abs() / exact;
+        assert!(err < max_err, "{file}: volume error {err}");
+        if triangles == 81920 {
+            // On the tips along x and z (vertices of the icosphere lie near, not on, them).
+            for d in [DVec3::X, DVec3::Z, DVec3::new(1.0, 1.0, 0.5).normalize()] {
+                let p = StarSurface::PAPER.radius_towards(d) * d;
+                assert!(star.distance(p).abs() < 5e-3, "{file}: {d}");
+            }
+        }
+    }
+}
