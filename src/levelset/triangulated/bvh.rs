@@ -23,11 +23,13 @@ struct Node {
     count: u32,
 }
 
-/// The hierarchy: nodes (root first) and the triangle permutation the leaves index into.
+/// The hierarchy: nodes (root first), the triangle permutation the leaves index into and the
+/// triangles' corners in that order (contiguous per leaf, for cache locality).
 #[derive(Debug, Clone)]
 pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
+    corners: Vec<[DVec3; 3]>,
 }
 
 /// The result of [`Bvh::nearest`].
@@ -111,7 +113,15 @@ impl Bvh {
             stack.push(left);
             stack.push(left + 1);
         }
-        Bvh { nodes, order }
+        let corners = order
+            .iter()
+            .map(|&t| triangles[t as usize].map(|v| points[v as usize]))
+            .collect();
+        Bvh {
+            nodes,
+            order,
+            corners,
+        }
     }
 
     /// The number of nodes.
@@ -121,7 +131,7 @@ impl Bvh {
 
     /// The nearest triangle to `p` and the closest point on it (ties go to the triangle met
     /// first in the deterministic traversal).
-    pub fn nearest(&self, p: DVec3, points: &[DVec3], triangles: &[[u32; 3]]) -> Nearest {
+    pub fn nearest(&self, p: DVec3) -> Nearest {
         let box_d2 = |n: &Node| {
             let d = (n.lo - p).max(p - n.hi).max(DVec3::ZERO);
             d.length_squared()
@@ -141,8 +151,8 @@ impl Bvh {
             let node = &self.nodes[ni as usize];
             if node.count > 0 {
                 let s = node.start as usize;
-                for &t in &self.order[s..s + node.count as usize] {
-                    let [a, b, c] = triangles[t as usize].map(|v| points[v as usize]);
+                let e = s + node.count as usize;
+                for (&t, &[a, b, c]) in self.order[s..e].iter().zip(&self.corners[s..e]) {
                     let (q, feature) = closest_point(p, a, b, c);
                     let dq = (p - q).length_squared();
                     if dq < best.distance_squared {

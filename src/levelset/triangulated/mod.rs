@@ -126,8 +126,7 @@ impl TriangulatedShape {
 
     /// The nearest triangle to `p`, the closest point on it and its feature.
     pub fn nearest(&self, p: DVec3) -> Nearest {
-        self.bvh
-            .nearest(p, &self.surface.points, &self.surface.triangles)
+        self.bvh.nearest(p)
     }
 
     /// The pseudo-normal (not unit) of the feature holding a closest point.
