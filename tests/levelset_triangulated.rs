@@ -218,8 +218,8 @@ fn invalid_message(points: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> String {
     }
 }
 
-/// Holes, non-manifold edges, degenerate triangles, non-finite coordinates and bad indices are
-/// typed errors naming the first offender and the count.
+/// Holes, non-manifold edges and vertices, degenerate triangles, non-finite coordinates and bad
+/// indices are typed errors naming the first offender and the count.
 #[test]
 fn invalid_surfaces_are_rejected() {
     let s = icosphere(2);
@@ -266,6 +266,25 @@ fn invalid_surfaces_are_rejected() {
     assert!(m.contains("triangle 0"), "{m}");
 
     assert!(invalid_message(s.points.clone(), vec![]).contains("no triangles"));
+
+    // Two tetrahedra touching at one vertex: every edge is manifold, the vertex is not.
+    let pts = vec![
+        DVec3::ZERO,
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(0.0, 0.0, 1.0),
+        DVec3::new(-1.0, 0.0, 0.0),
+        DVec3::new(0.0, -1.0, 0.0),
+        DVec3::new(0.0, 0.0, -1.0),
+    ];
+    let tet = |a: u32, b: u32, c: u32, d: u32| vec![[a, c, b], [a, b, d], [b, c, d], [c, a, d]];
+    let mut tris = tet(0, 1, 2, 3);
+    tris.extend(tet(0, 4, 5, 6));
+    let m = invalid_message(pts, tris);
+    assert!(
+        m.contains("vertex 0") && m.contains("(1 such vertices)"),
+        "{m}"
+    );
 }
 
 /// The radial star surface: its enclosed volume converges to the exact volume of the 004 §5

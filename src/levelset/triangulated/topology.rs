@@ -3,7 +3,8 @@
 //! Rejected (with [`Error::InvalidInput`] naming the first offender and the counts): a
 //! non-finite coordinate, a vertex index out of range, a degenerate triangle (a repeated vertex
 //! or an area below `1e-14` times its longest edge squared), a hole (an edge used by one
-//! triangle) and a non-manifold edge (used by more than two).
+//! triangle), a non-manifold edge (used by more than two) and a non-manifold vertex (its
+//! triangles form several fans: two sheets touching at a point).
 //!
 //! Repaired: inconsistent orientation. Each connected component (triangles joined through
 //! shared edges) is re-oriented by a breadth-first search from its lowest-numbered triangle, so
@@ -211,10 +212,61 @@ pub fn orient(points: &[DVec3], triangles: &[[u32; 3]]) -> Result<Oriented> {
             out_nb.push(nb);
         }
     }
+    check_vertex_fans(points.len(), &out, &out_nb)?;
     Ok(Oriented {
         triangles: out,
         neighbours: out_nb,
         flipped,
         components,
     })
+}
+
+/// Rejects a vertex whose triangles form more than one fan (two sheets touching at a point):
+/// walking around the vertex across the (consistently oriented) edges that start at it must
+/// visit all of its triangles.
+fn check_vertex_fans(
+    n_points: usize,
+    triangles: &[[u32; 3]],
+    neighbours: &[[u32; 3]],
+) -> Result<()> {
+    let mut incident = vec![0usize; n_points];
+    let mut first = vec![u32::MAX; n_points];
+    for (t, tri) in triangles.iter().enumerate() {
+        for &v in tri {
+            incident[v as usize] += 1;
+            if first[v as usize] == u32::MAX {
+                first[v as usize] = t as u32;
+            }
+        }
+    }
+    let mut bad: Option<(usize, usize, usize)> = None;
+    let mut count = 0;
+    for v in 0..n_points {
+        if incident[v] == 0 {
+            continue;
+        }
+        let start = first[v] as usize;
+        let (mut t, mut fan) = (start, 0);
+        loop {
+            fan += 1;
+            let i = (0..3).find(|&i| triangles[t][i] as usize == v).unwrap_or(0);
+            // After crossing the edge (v, w) the neighbour holds (w, v); its next edge from v
+            // is the one to cross next.
+            t = neighbours[t][i] as usize;
+            if t == start || fan > incident[v] {
+                break;
+            }
+        }
+        if fan != incident[v] {
+            count += 1;
+            bad.get_or_insert((v, incident[v], fan));
+        }
+    }
+    if let Some((v, n, fan)) = bad {
+        return Err(Error::InvalidInput(format!(
+            "surface is not a manifold at vertex {v}: a fan of {fan} of its {n} triangles \
+             closes without the others ({count} such vertices)"
+        )));
+    }
+    Ok(())
 }
