@@ -22,7 +22,7 @@ pub use medit::{
     parse_medit3, parse_mesh2, read_medit2, read_medit3, write_medit2, write_medit2_to,
     write_medit3, Medit3,
 };
-pub use obj::{parse_obj, read_obj, SurfaceMesh};
+pub use obj::{parse_obj, read_obj, write_obj, SurfaceMesh};
 pub use sol::{
     parse_sol, read_sol, read_sol_for, sym3_from_file, sym3_to_file, write_sol, Sol, SolField,
 };

@@ -7,9 +7,11 @@ pub mod compare;
 pub mod expr;
 pub mod interface;
 pub mod measure;
+pub mod radial;
 pub mod redistance;
 pub mod shapes;
 mod surface;
+pub mod triangulated;
 
 pub use expr::{Expr, Variables};
 pub use interface::{
@@ -17,8 +19,10 @@ pub use interface::{
     Polyline,
 };
 pub use measure::{enclosed_measure, interface_measure};
+pub use radial::{icosphere, radial_surface, torus_surface};
 pub use shapes::{
     nodal_distance, shape_by_name, Ball, Circle, Difference, Flower, Intersection, Normalized,
     Rotated, Shape, ShapePoint, Sphere, StarSurface, Torus, Union, Zalesak, SHAPE_NAMES,
 };
 pub use surface::TriangleSurface;
+pub use triangulated::TriangulatedShape;

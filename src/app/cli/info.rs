@@ -34,6 +34,19 @@ pub fn run(file: &Path, sol: Option<&Path>) -> Result<()> {
             println!("{}: surface", file.display());
             println!("  vertices      {}", s.points.len());
             println!("  triangles     {}", s.tris.len());
+            // A closed surface: its orientation repair, volume and area; otherwise why not.
+            match anisomesh::levelset::TriangulatedShape::from_mesh(&s) {
+                Ok(shape) => {
+                    println!(
+                        "  closed        yes, {} component(s), {} triangles re-oriented",
+                        shape.components(),
+                        shape.flipped_triangles()
+                    );
+                    println!("  volume        {:.10}", shape.volume());
+                    println!("  area          {:.10}", shape.area());
+                }
+                Err(e) => println!("  closed        no: {e}"),
+            }
             Ok(())
         }
     }

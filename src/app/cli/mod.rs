@@ -12,6 +12,7 @@ mod metric_args;
 mod progress;
 mod redistance;
 mod shape;
+mod triangulate;
 mod ugawg;
 mod user_files;
 
@@ -70,6 +71,8 @@ enum Command {
         /// Output mesh (.mesh, .msh or .vtu).
         output: PathBuf,
     },
+    /// Writes a closed triangulation (OBJ) of a built-in surface: star, sphere or torus.
+    Triangulate(triangulate::TriangulateArgs),
     /// Evaluates a level set on a mesh's vertices and writes it (.sol or .vtu).
     Shape {
         /// A built-in shape: circle, zalesak or flower.
@@ -108,6 +111,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Metric(a)) => metric::run(a),
         Some(Command::Redistance(a)) => redistance::run(a),
         Some(Command::Ugawg(a)) => ugawg::run(a),
+        Some(Command::Triangulate(a)) => triangulate::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

@@ -10,6 +10,7 @@
 mod charts;
 pub mod colormap;
 mod mesh;
+pub mod surface;
 
 pub use charts::{
     fit_loglog_slope, lines_png, lines_rgb, loglog_png, loglog_rgb, LinesPlot, LogLogPlot, Series,

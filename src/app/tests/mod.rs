@@ -8,6 +8,7 @@ mod convergence_sweep;
 mod couette_bench;
 mod peers_glue;
 mod plot_figures;
+mod plot_surface;
 mod reinit_drift;
 mod reinit_torus;
 mod stokes_couette;
