@@ -27,6 +27,7 @@ pub mod adapted;
 pub mod dtgrid;
 mod implicit;
 mod report;
+pub mod surface;
 
 pub use crate::levelset::TriangleSurface;
 pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme, Redistancing};
