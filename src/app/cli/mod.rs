@@ -9,6 +9,7 @@ mod info;
 mod metric_args;
 mod progress;
 mod shape;
+mod surface;
 
 use anisomesh::Result;
 use clap::{Parser, Subcommand};
@@ -38,6 +39,9 @@ enum Command {
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
+    /// Parametric surfaces moved by Dziuk's surface finite elements (002).
+    #[command(subcommand)]
+    Surface(surface::Surface),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -87,6 +91,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Bench(b)) => bench::run(b),
+        Some(Command::Surface(s)) => surface::run(s),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

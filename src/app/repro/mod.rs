@@ -7,4 +7,5 @@ pub mod couette_sweep;
 pub mod peers;
 pub mod reinit;
 pub mod speed;
+pub mod surface_mcf;
 pub mod zalesak;
