@@ -4,6 +4,7 @@
 mod adapt;
 mod bench;
 mod convert;
+mod crosscheck;
 mod flows;
 mod info;
 mod metric_args;
@@ -39,6 +40,9 @@ enum Command {
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
+    /// Each problem (shrinking circle and sphere, interface curvature) through every back end
+    /// that can take it: error, order and time per back end; crosscheck.json, .csv, figures.
+    Crosscheck(crosscheck::CrosscheckArgs),
     /// Parametric surfaces moved by Dziuk's surface finite elements (002).
     #[command(subcommand)]
     Surface(surface::Surface),
@@ -92,6 +96,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Bench(b)) => bench::run(b),
         Some(Command::Surface(s)) => surface::run(s),
+        Some(Command::Crosscheck(a)) => crosscheck::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }
