@@ -75,3 +75,24 @@ fn tiny_crosscheck_converges_and_writes() {
     assert!(dir.join("crosscheck_circle_mcf.png").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn cost_at_error_interpolates_between_bracketing_rows() {
+    use crate::app::repro::crosscheck::Row;
+    let row = |dof: usize, error: f64, seconds: f64| Row {
+        backend: "b".into(),
+        resolution: 1.0,
+        dof,
+        error,
+        order: None,
+        seconds,
+    };
+    let p = Problem {
+        name: "p".into(),
+        error_measure: String::new(),
+        rows: vec![row(100, 1e-2, 1.0), row(400, 1e-3, 16.0)],
+    };
+    let (dof, sec) = p.cost_at_error(10f64.powf(-2.5))[0].1.unwrap();
+    assert!((dof - 200.0).abs() < 1e-9 && (sec - 4.0).abs() < 1e-9);
+    assert!(p.cost_at_error(1e-4)[0].1.is_none());
+}

@@ -97,6 +97,41 @@ impl Problem {
     pub fn rows_of<'a>(&'a self, backend: &'a str) -> impl Iterator<Item = &'a Row> + 'a {
         self.rows.iter().filter(move |r| r.backend == backend)
     }
+
+    /// The back ends in order of first appearance.
+    pub fn backends(&self) -> Vec<&str> {
+        let mut names: Vec<&str> = Vec::new();
+        for r in &self.rows {
+            if !names.contains(&r.backend.as_str()) {
+                names.push(&r.backend);
+            }
+        }
+        names
+    }
+
+    /// For each back end, the degrees of freedom and seconds it needs for the error `target`:
+    /// log-log interpolation between its two rows around `target`, `None` when its rows do not
+    /// reach `target` or do not bracket it.
+    pub fn cost_at_error(&self, target: f64) -> Vec<(String, Option<(f64, f64)>)> {
+        self.backends()
+            .into_iter()
+            .map(|b| {
+                let rows: Vec<&Row> = self.rows_of(b).collect();
+                let hit = rows.windows(2).find_map(|w| {
+                    let (a, c) = (w[0], w[1]);
+                    if !(a.error >= target && c.error <= target && a.error > c.error) {
+                        return None;
+                    }
+                    let s = (a.error / target).ln() / (a.error / c.error).ln();
+                    let lerp = |x: f64, y: f64| {
+                        (x.max(1e-9).ln() * (1.0 - s) + y.max(1e-9).ln() * s).exp()
+                    };
+                    Some((lerp(a.dof as f64, c.dof as f64), lerp(a.seconds, c.seconds)))
+                });
+                (b.to_string(), hit)
+            })
+            .collect()
+    }
 }
 
 /// The whole cross-check (`crosscheck.json`).
@@ -139,6 +174,23 @@ pub fn tables(report: &CrossReport) -> String {
                 r.backend, r.resolution, r.dof, r.error, o, r.seconds
             );
         }
+        // The cost of one error for all: the largest finest error of the back ends that
+        // converge (positive order at their finest row).
+        let target = p
+            .backends()
+            .iter()
+            .filter_map(|b| p.rows_of(b).last())
+            .filter(|r| r.order.is_some_and(|o| o > 0.0))
+            .map(|r| r.error)
+            .fold(0.0, f64::max);
+        s += &format!("dof and seconds for the error {target:.2e}:");
+        for (b, hit) in p.cost_at_error(target) {
+            match hit {
+                Some((dof, sec)) => s += &format!("  {b} {dof:.0} dof {sec:.3} s;"),
+                None => s += &format!("  {b} -;"),
+            }
+        }
+        s += "\n";
     }
     s
 }
@@ -165,13 +217,8 @@ pub fn write_outputs(dir: &Path, report: &CrossReport) -> Result<()> {
         Ok(())
     })?;
     for p in &report.problems {
-        let mut names: Vec<&str> = Vec::new();
-        for r in &p.rows {
-            if !names.contains(&r.backend.as_str()) {
-                names.push(&r.backend);
-            }
-        }
-        let series = names
+        let series = p
+            .backends()
             .iter()
             .map(|n| Series {
                 name: n.to_string(),
