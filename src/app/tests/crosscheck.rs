@@ -22,11 +22,10 @@ fn tiny_crosscheck_converges_and_writes() {
     let mut lines = 0;
     let report = crosscheck::run(Resolution::Tiny, &mut |_| lines += 1).unwrap();
     eprintln!("{}", crosscheck::tables(&report));
-    assert_eq!(report.problems.len(), 4);
-    assert_eq!(
-        lines,
-        report.problems.iter().map(|p| p.rows.len()).sum::<usize>()
-    );
+    assert_eq!(report.problems.len(), 6);
+    // One line per run; a Zalesak run fills two problems.
+    let rows = report.problems.iter().map(|p| p.rows.len()).sum::<usize>();
+    assert_eq!(lines, rows - problem(&report, "zalesak_area").rows.len());
 
     // Circle by curvature. Measured: adapted 4.3e-3 -> 2.1e-3 (order 1.07), polygon 2.4e-3 ->
     // 5.4e-4 (2.12), quadratic arcs 6.2e-3 -> 1.7e-3 (1.90).
@@ -60,12 +59,21 @@ fn tiny_crosscheck_converges_and_writes() {
         assert!(o > 1.5 && e < 2e-2, "{b} {o} {e}");
     }
 
+    // Zalesak, one revolution. Measured: area 2.1e-4 / 6.4e-4 (the signed errors of the P1
+    // zero level cancel unevenly), perimeter 6.2e-3 -> 3.1e-3 (order 1.00).
+    let (_, area) = finest(problem(&report, "zalesak_area"), "adapted");
+    let (o, perimeter) = finest(problem(&report, "zalesak_perimeter"), "adapted");
+    assert!(
+        area < 2e-3 && perimeter < 5e-3 && o > 0.6,
+        "{area} {perimeter} {o}"
+    );
+
     let dir = std::env::temp_dir().join(format!("anisomesh_crosscheck_{}", std::process::id()));
     crosscheck::write_outputs(&dir, &report).unwrap();
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("crosscheck.json")).unwrap())
             .unwrap();
-    assert_eq!(json["problems"].as_array().unwrap().len(), 4);
+    assert_eq!(json["problems"].as_array().unwrap().len(), 6);
     assert!(json["problems"][0]["rows"][0]["backend"].is_string());
     let csv = std::fs::read_to_string(dir.join("crosscheck.csv")).unwrap();
     assert_eq!(

@@ -5,7 +5,9 @@
 //! Problems ([`problems`]): the circle shrinking by curvature (`R(t) = √(R0² − 2t)`) through the
 //! level-set back ends of [`level_set_backends`] and the parametric curves of 002; the sphere
 //! shrinking by mean curvature (`R(t) = √(R0² − 4t)`) with parametric P1 and P2 surfaces; the
-//! interface curvature of a circle and of an ellipse given by a non-distance implicit function.
+//! interface curvature of a circle and of an ellipse given by a non-distance implicit function;
+//! Zalesak's slotted disk after one revolution (area and perimeter errors) through the level-set
+//! back ends.
 //! The order of a row is `log(e_prev / e) / log(h_prev / h)` against the previous row of the
 //! same back end, `h` the resolution (the mesh size the back end was built with, the arc length
 //! of a curve's element, `V^{-1/2}` on a surface).
@@ -18,7 +20,7 @@ use anisomesh::error::{Error, Result};
 use serde::Serialize;
 use std::path::Path;
 
-pub use problems::{circle_mcf, curvature, sphere_mcf};
+pub use problems::{circle_mcf, curvature, sphere_mcf, zalesak};
 
 /// Builds a 2D level-set back end of one kind from a [`BuildSpec`].
 pub type Build2 = Box<dyn Fn(&BuildSpec<'_, D2>) -> Result<Box<dyn LevelSetBackend<D2>>>>;
@@ -146,12 +148,13 @@ pub struct CrossReport {
 /// Runs every problem; `progress` hears a line per finished run.
 pub fn run(res: Resolution, progress: &mut dyn FnMut(&str)) -> Result<CrossReport> {
     let backends = level_set_backends();
-    let problems = vec![
+    let mut problems = vec![
         circle_mcf(res, &backends, progress)?,
         sphere_mcf(res, progress)?,
         curvature(res, false, &backends, progress)?,
         curvature(res, true, &backends, progress)?,
     ];
+    problems.extend(zalesak(res, &backends, progress)?);
     Ok(CrossReport {
         resolution: res,
         problems,
@@ -183,6 +186,9 @@ pub fn tables(report: &CrossReport) -> String {
             .filter(|r| r.order.is_some_and(|o| o > 0.0))
             .map(|r| r.error)
             .fold(0.0, f64::max);
+        if target <= 0.0 {
+            continue;
+        }
         s += &format!("dof and seconds for the error {target:.2e}:");
         for (b, hit) in p.cost_at_error(target) {
             match hit {

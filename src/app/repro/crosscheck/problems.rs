@@ -251,3 +251,66 @@ pub fn curvature(
     p.fill_orders();
     Ok(p)
 }
+
+/// Zalesak's slotted disk (004 §5.1) rotated by `v = (−y, x)` for one revolution in 16 steps
+/// through the level-set back ends at `h = 0.02 / 2^k` in `[−2, 2]²`: two problems, the
+/// relative area error and the relative perimeter error of the zero level after the
+/// revolution (no redistancing, no mass correction).
+pub fn zalesak(
+    res: Resolution,
+    backends: &[(&'static str, Build2)],
+    progress: &mut dyn FnMut(&str),
+) -> Result<[Problem; 2]> {
+    use crate::app::repro::zalesak::exact::{EXACT_AREA, EXACT_PERIMETER};
+    let shape = anisomesh::levelset::Zalesak::default();
+    let (mut area_rows, mut perimeter_rows) = (Vec::new(), Vec::new());
+    let steps = 16;
+    let v = |_t: f64, x: DVec2| DVec2::new(-x.y, x.x);
+    // The tiny resolution stops one level short of the others: a revolution is the costliest run.
+    for k in 0..res.levels().min(3) {
+        for (name, build) in backends {
+            let h = H0 / 2f64.powi(k as i32);
+            let start = Instant::now();
+            let mut b = build(&BuildSpec {
+                function: &shape,
+                domain: (DVec2::new(-2.0, -2.0), DVec2::new(2.0, 2.0)),
+                resolution: h,
+            })?;
+            for _ in 0..steps {
+                b.advect(&v, 2.0 * PI / steps as f64)?;
+            }
+            let seconds = start.elapsed().as_secs_f64();
+            let area = (b.enclosed_measure()? / EXACT_AREA - 1.0).abs();
+            let perimeter = (b.interface_measure()? / EXACT_PERIMETER - 1.0).abs();
+            progress(&format!(
+                "zalesak {name} h {h}: area {area:.2e}, perimeter {perimeter:.2e}"
+            ));
+            let row = |error| Row {
+                backend: name.to_string(),
+                resolution: h,
+                dof: b.dof(),
+                error,
+                order: None,
+                seconds,
+            };
+            area_rows.push(row(area));
+            perimeter_rows.push(row(perimeter));
+        }
+    }
+    let sort = |rows: &mut Vec<Row>| rows.sort_by(|a, b| a.backend.cmp(&b.backend));
+    sort(&mut area_rows);
+    sort(&mut perimeter_rows);
+    let mut a = Problem {
+        name: "zalesak_area".into(),
+        error_measure: "|area / exact - 1| after one revolution (16 steps)".into(),
+        rows: area_rows,
+    };
+    let mut p = Problem {
+        name: "zalesak_perimeter".into(),
+        error_measure: "|perimeter / exact - 1| after one revolution (16 steps)".into(),
+        rows: perimeter_rows,
+    };
+    a.fill_orders();
+    p.fill_orders();
+    Ok([a, p])
+}
