@@ -21,17 +21,20 @@
 //!
 //! Files: `mod.rs` (the contract), `report.rs` (step reports, curvature samples, triangle
 //! surfaces), `implicit.rs` (a closure as an implicit shape), `adapted/` (the anisotropic
-//! adapted mesh of 004).
+//! adapted mesh of 004), `surface/` (parametric curves and surfaces moved by Dziuk's scheme,
+//! 002: the reference the level-set back ends are cross-checked against).
 
 pub mod adapted;
 pub mod dtgrid;
 mod implicit;
 mod report;
+pub mod surface;
 
 pub use crate::levelset::TriangleSurface;
 pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme, Redistancing};
 pub use implicit::FnShape;
 pub use report::{CurvatureSamples, PhaseTimes, StepReport};
+pub use surface::{ParametricCurve, ParametricSurface};
 
 use crate::error::Result;
 use crate::geom::{DVec2, DVec3};

@@ -4,6 +4,7 @@
 mod adapt;
 mod bench;
 mod convert;
+mod crosscheck;
 mod flows;
 mod info;
 mod measure;
@@ -12,6 +13,7 @@ mod metric_args;
 mod progress;
 mod redistance;
 mod shape;
+mod surface;
 mod triangulate;
 mod ugawg;
 mod user_files;
@@ -44,6 +46,12 @@ enum Command {
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
+    /// Each problem (shrinking circle and sphere, interface curvature) through every back end
+    /// that can take it: error, order and time per back end; crosscheck.json, .csv, figures.
+    Crosscheck(crosscheck::CrosscheckArgs),
+    /// Parametric surfaces moved by Dziuk's surface finite elements (002).
+    #[command(subcommand)]
+    Surface(surface::Surface),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -112,6 +120,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Redistance(a)) => redistance::run(a),
         Some(Command::Ugawg(a)) => ugawg::run(a),
         Some(Command::Triangulate(a)) => triangulate::run(a),
+        Some(Command::Surface(s)) => surface::run(s),
+        Some(Command::Crosscheck(a)) => crosscheck::run(a),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

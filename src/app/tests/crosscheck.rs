@@ -1,0 +1,106 @@
+//! The cross-check at its tiny resolution: every back end converges towards the exact radius
+//! or curvature at its expected order, and the outputs are written.
+
+use crate::app::repro::crosscheck::{self, CrossReport, Problem, Resolution};
+
+fn problem<'a>(r: &'a CrossReport, name: &str) -> &'a Problem {
+    r.problems.iter().find(|p| p.name == name).unwrap()
+}
+
+/// The (order, finest error) of a back end in a problem.
+fn finest(p: &Problem, backend: &str) -> (f64, f64) {
+    let rows: Vec<_> = p.rows_of(backend).collect();
+    assert_eq!(rows.len(), 2, "{} {backend}", p.name);
+    assert!(rows
+        .iter()
+        .all(|r| r.dof > 0 && r.seconds >= 0.0 && r.error.is_finite()));
+    (rows[1].order.unwrap(), rows[1].error)
+}
+
+#[test]
+fn tiny_crosscheck_converges_and_writes() {
+    let mut lines = 0;
+    let report = crosscheck::run(Resolution::Tiny, &mut |_| lines += 1).unwrap();
+    eprintln!("{}", crosscheck::tables(&report));
+    assert_eq!(report.problems.len(), 6);
+    // One line per run; a Zalesak run fills two problems.
+    let rows = report.problems.iter().map(|p| p.rows.len()).sum::<usize>();
+    assert_eq!(lines, rows - problem(&report, "zalesak_area").rows.len());
+
+    // Circle by curvature. Measured: adapted 4.3e-3 -> 2.1e-3 (order 1.07), polygon 2.4e-3 ->
+    // 5.4e-4 (2.12), quadratic arcs 6.2e-3 -> 1.7e-3 (1.90).
+    let c = problem(&report, "circle_mcf");
+    let (o, e) = finest(c, "adapted");
+    assert!(o > 0.7 && e < 3e-3, "adapted {o} {e}");
+    for b in ["parametric P1", "parametric P2"] {
+        let (o, e) = finest(c, b);
+        assert!(o > 1.7 && e < 2e-3, "{b} {o} {e}");
+    }
+
+    // Sphere (002). Measured: P1 2.29e-2 -> 5.79e-3 (2.00), P2 9.89e-4 -> 2.70e-4 (1.89).
+    let s = problem(&report, "sphere_mcf");
+    let (o1, e1) = finest(s, "parametric P1");
+    let (o2, e2) = finest(s, "parametric P2");
+    assert!((1.8..2.2).contains(&o1) && (1.6..2.4).contains(&o2));
+    assert!(e2 < 0.1 * e1 && e2 < 6.05e-4);
+
+    // Curvature of a circle: every back end within 1 % at the finest level. Measured: adapted
+    // 2.5e-3 -> 1.4e-3, polygon 2.6e-2 -> 6.4e-3 (2.03), arcs 8.8e-3 -> 2.4e-3 (1.91).
+    let k = problem(&report, "curvature_circle");
+    for b in ["adapted", "parametric P1", "parametric P2"] {
+        let (o, e) = finest(k, b);
+        assert!(o > 0.5 && e < 1e-2, "{b} {o} {e}");
+    }
+    // Curvature of the ellipse from a non-distance function: the parametric curves converge at
+    // order about 2 (measured 2.25, 1.80).
+    let k = problem(&report, "curvature_ellipse");
+    for b in ["parametric P1", "parametric P2"] {
+        let (o, e) = finest(k, b);
+        assert!(o > 1.5 && e < 2e-2, "{b} {o} {e}");
+    }
+
+    // Zalesak, one revolution. Measured: area 2.1e-4 / 6.4e-4 (the signed errors of the P1
+    // zero level cancel unevenly), perimeter 6.2e-3 -> 3.1e-3 (order 1.00).
+    let (_, area) = finest(problem(&report, "zalesak_area"), "adapted");
+    let (o, perimeter) = finest(problem(&report, "zalesak_perimeter"), "adapted");
+    assert!(
+        area < 2e-3 && perimeter < 5e-3 && o > 0.6,
+        "{area} {perimeter} {o}"
+    );
+
+    let dir = std::env::temp_dir().join(format!("anisomesh_crosscheck_{}", std::process::id()));
+    crosscheck::write_outputs(&dir, &report).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("crosscheck.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["problems"].as_array().unwrap().len(), 6);
+    assert!(json["problems"][0]["rows"][0]["backend"].is_string());
+    let csv = std::fs::read_to_string(dir.join("crosscheck.csv")).unwrap();
+    assert_eq!(
+        csv.lines().count(),
+        1 + report.problems.iter().map(|p| p.rows.len()).sum::<usize>()
+    );
+    assert!(dir.join("crosscheck_circle_mcf.png").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn cost_at_error_interpolates_between_bracketing_rows() {
+    use crate::app::repro::crosscheck::Row;
+    let row = |dof: usize, error: f64, seconds: f64| Row {
+        backend: "b".into(),
+        resolution: 1.0,
+        dof,
+        error,
+        order: None,
+        seconds,
+    };
+    let p = Problem {
+        name: "p".into(),
+        error_measure: String::new(),
+        rows: vec![row(100, 1e-2, 1.0), row(400, 1e-3, 16.0)],
+    };
+    let (dof, sec) = p.cost_at_error(10f64.powf(-2.5))[0].1.unwrap();
+    assert!((dof - 200.0).abs() < 1e-9 && (sec - 4.0).abs() < 1e-9);
+    assert!(p.cost_at_error(1e-4)[0].1.is_none());
+}
