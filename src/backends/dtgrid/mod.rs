@@ -1,8 +1,11 @@
 //! The DT-Grid narrow-band back end (000): a level-set function stored on the nodes of a uniform
 //! grid within a band around its zero level, Q1 finite elements on the band's cells.
 //!
-//! Files: `band.rs` (the [`Band`] seam between storage and finite elements).
+//! Files: `band.rs` (the [`Band`] seam between storage and finite elements), `sorted.rs`
+//! ([`SortedBand`], a sorted-vector storage).
 
 mod band;
+mod sorted;
 
 pub use band::{Band, GridCoord};
+pub use sorted::SortedBand;
