@@ -2,10 +2,13 @@
 //! grid within a band around its zero level, Q1 finite elements on the band's cells.
 //!
 //! Files: `band.rs` (the [`Band`] seam between storage and finite elements), `sorted.rs`
-//! ([`SortedBand`], a sorted-vector storage).
+//! ([`SortedBand`], a sorted-vector storage), [`lattice`] (the grid and the band of half-width
+//! `j` around a zero level), [`surface`] (the zero level, surface integrals, signed distance).
 
 mod band;
+pub mod lattice;
 mod sorted;
+pub mod surface;
 
 pub use band::{Band, GridCoord};
 pub use sorted::SortedBand;
