@@ -3,9 +3,11 @@
 //!
 //! Files: `band.rs` (the [`Band`] seam between storage and finite elements), `sorted.rs`
 //! ([`SortedBand`], a sorted-vector storage), [`lattice`] (the grid and the band of half-width
-//! `j` around a zero level), [`surface`] (the zero level, surface integrals, signed distance).
+//! `j` around a zero level), [`fem`] (Q1 band matrices, the transparent boundary vector),
+//! [`surface`] (the zero level, surface integrals, signed distance).
 
 mod band;
+pub mod fem;
 pub mod lattice;
 mod sorted;
 pub mod surface;
