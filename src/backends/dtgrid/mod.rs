@@ -4,11 +4,14 @@
 //! Files: `band.rs` (the [`Band`] seam between storage and finite elements), `sorted.rs`
 //! ([`SortedBand`], a sorted-vector storage), [`lattice`] (the grid and the band of half-width
 //! `j` around a zero level), [`fem`] (Q1 band matrices, the transparent boundary vector),
-//! [`surface`] (the zero level, surface integrals, signed distance).
+//! [`scheme`] (the linear systems of a step under each boundary condition), [`heat`] (the heat
+//! equation on a sphere, 000 Table 2.1), [`surface`] (the zero level, surface integrals, signed distance).
 
 mod band;
 pub mod fem;
+pub mod heat;
 pub mod lattice;
+pub mod scheme;
 mod sorted;
 pub mod surface;
 
