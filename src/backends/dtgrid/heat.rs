@@ -1,5 +1,5 @@
 //! The heat equation on a sphere solved on a narrow band (000 §2.1, Table 2.1): the second
-//! spherical harmonic `Y = 3 (z/|x|)² − 1` on the sphere of radius `R` decays as `e^{−6t/R²}`;
+//! spherical harmonic `Y = (z/|x|)² − 1/3` on the sphere of radius `R` decays as `e^{−6t/R²}`;
 //! the band carries `Φ = |x| − R` and `U` extended constantly along the normals; each step
 //! solves `(M[Φ] + τ L[Φ]) U^{k+1} = M[Φ] U^k (+ τ Γ[U^k])` (000 (2.10), transparent conditions
 //! with `U_approx = U^k`). The error is `‖U − u‖_{L²(M_h)}` on the discrete surface `[Φ = 0]`.
@@ -67,7 +67,7 @@ pub fn sphere_heat<B: Band<Coord = C3>>(o: &HeatOptions) -> Result<HeatResult> {
             "the heat problem takes natural or transparent conditions".into(),
         ));
     }
-    if !(o.t_end > 0.0) || !(o.radius > 0.0) {
+    if !(o.t_end.is_finite() && o.t_end > 0.0 && o.radius.is_finite() && o.radius > 0.0) {
         return Err(Error::InvalidInput(format!(
             "heat: t_end = {} and radius = {} must be positive",
             o.t_end, o.radius
@@ -82,11 +82,11 @@ pub fn sphere_heat<B: Band<Coord = C3>>(o: &HeatOptions) -> Result<HeatResult> {
     let phi: Vec<f64> = nb.band.coords().map(|c| f(lat.pos(c))).collect();
     let y = |p: DVec3| {
         let l = p.length().max(1e-300);
-        3.0 * (p.z / l).powi(2) - 1.0
+        (p.z / l).powi(2) - 1.0 / 3.0
     };
     let mut u: Vec<f64> = nb.band.coords().map(|c| y(lat.pos(c))).collect();
     let tau0 = o.tau.unwrap_or(lat.h * lat.h);
-    if !(tau0 > 0.0) {
+    if tau0.is_nan() || tau0 <= 0.0 {
         return Err(Error::InvalidInput(format!("heat: time step {tau0}")));
     }
     let steps = (o.t_end / tau0).ceil().max(1.0) as usize;

@@ -70,7 +70,12 @@ pub fn solve_all(a: &Csr, b: &[f64], x: &mut [f64]) -> Result<usize> {
     let d = a.diagonal();
     let rep = pcg(
         |v, y| a.matvec(v, y),
-        |r, z| z.iter_mut().zip(r).zip(&d).for_each(|((z, r), d)| *z = r / d),
+        |r, z| {
+            z.iter_mut()
+                .zip(r)
+                .zip(&d)
+                .for_each(|((z, r), d)| *z = r / d)
+        },
         b,
         x,
         &cg_options(),
