@@ -4,6 +4,7 @@
 mod adapt;
 mod bench;
 mod convert;
+mod dtgrid;
 mod flows;
 mod info;
 mod metric_args;
@@ -38,6 +39,9 @@ enum Command {
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
+    /// Band finite elements (000 §2): the heat equation and mean curvature motion on a band.
+    #[command(subcommand)]
+    Dtgrid(dtgrid::DtGrid),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -87,6 +91,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Bench(b)) => bench::run(b),
+        Some(Command::Dtgrid(d)) => dtgrid::run(d),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

@@ -4,6 +4,7 @@ pub mod adapt_run;
 pub mod convergence;
 pub mod couette;
 pub mod couette_sweep;
+pub mod dtgrid;
 pub mod peers;
 pub mod reinit;
 pub mod speed;
