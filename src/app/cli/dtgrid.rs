@@ -103,11 +103,12 @@ pub fn run(cmd: DtGrid) -> Result<()> {
         DtGrid::Mcf(a) => {
             if a.step_timing {
                 let n = a.n.unwrap_or(129);
-                let (nodes, rb, asm, sol, solves) = repro::step_timing(n, a.band)?;
+                let (nodes, rb, asm, sol, solves, rate) = repro::step_timing(n, a.band)?;
                 println!(
                     "one mean curvature step, sphere r = 1/3, {n}³, j = {}: {nodes} band nodes, \
                      {solves} solves; rebuild {rb:.3} s, assembly {asm:.3} s, solve {sol:.3} s, \
-                     total {:.3} s (000 Table 4.1 at 513³: 10.2, 14.1, 5.9 s)",
+                     total {:.3} s (000 Table 4.1 at 513³: 10.2, 14.1, 5.9 s); CSR matvec \
+                     {rate:.3e} band nodes/s",
                     a.band,
                     rb + asm + sol
                 );

@@ -6,7 +6,8 @@
 //! `j` around a zero level), [`fem`] (Q1 band matrices, the transparent boundary vector),
 //! [`scheme`] (the linear systems of a step under each boundary condition), [`heat`] (the heat
 //! equation on a sphere, 000 Table 2.1), [`mcf`] (mean curvature motion with Dirichlet conditions
-//! and the nested inner iteration, 000 §2.4, Table 2.2), [`surface`] (the zero level, surface integrals, signed distance).
+//! and the nested inner iteration, 000 §2.4, Table 2.2), [`surface`] (the zero level, surface
+//! integrals, signed distance).
 
 mod band;
 pub mod fem;
