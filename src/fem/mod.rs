@@ -7,6 +7,8 @@
 //! - [`assembly`]: deterministic parallel element assembly.
 //! - [`p1`]: P1 mass, lumped mass, stiffness (scalar or tensor coefficient), load, errors.
 //! - [`p1_bubble`]: the MINI element (P1-bubble / P1) with the bubble condensed.
+//! - [`q1`]: the Q1 element on the reference square/cube (shape functions, tensor Gauss rules,
+//!   lumped mass, weighted stiffness).
 //! - [`dirichlet`]: symmetric Dirichlet elimination.
 //! - [`solve`]: PCG (Jacobi, IC(0)) and sparse direct solves (faer Cholesky and LU).
 
@@ -16,6 +18,7 @@ pub mod dirichlet;
 pub mod lagrange;
 pub mod p1;
 pub mod p1_bubble;
+pub mod q1;
 pub mod quadrature;
 pub mod rect_csr;
 pub mod solve;

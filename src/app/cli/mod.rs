@@ -5,6 +5,7 @@ mod adapt;
 mod bench;
 mod convert;
 mod crosscheck;
+mod dtgrid;
 mod flows;
 mod info;
 mod measure;
@@ -52,6 +53,9 @@ enum Command {
     /// Parametric surfaces moved by Dziuk's surface finite elements (002).
     #[command(subcommand)]
     Surface(surface::Surface),
+    /// Band finite elements (000 §2): the heat equation and mean curvature motion on a band.
+    #[command(subcommand)]
+    Dtgrid(dtgrid::DtGrid),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -122,6 +126,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Triangulate(a)) => triangulate::run(a),
         Some(Command::Surface(s)) => surface::run(s),
         Some(Command::Crosscheck(a)) => crosscheck::run(a),
+        Some(Command::Dtgrid(d)) => dtgrid::run(d),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }
 }

@@ -6,6 +6,7 @@ pub mod convergence;
 pub mod couette;
 pub mod couette_sweep;
 pub mod crosscheck;
+pub mod dtgrid;
 pub mod peers;
 pub mod reinit;
 pub mod speed;

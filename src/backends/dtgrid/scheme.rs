@@ -1,0 +1,135 @@
+//! The linear systems of one semi-implicit band time step (000 (2.5), (2.10), (2.12)):
+//! `(M + τ L) U = r` with natural or transparent Neumann conditions (all band nodes unknown), or
+//! with Dirichlet values on the boundary layer (000 (2.12): CG updates interior nodes only, the
+//! boundary nodes keep their prescribed values). CG with the diagonal preconditioner.
+
+use super::fem::BandMatrices;
+use crate::error::{Error, Result};
+use crate::fem::solve::pcg;
+use crate::fem::{CgOptions, Csr};
+
+/// The boundary condition on the band's boundary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bc {
+    /// Natural (homogeneous Neumann) conditions of the weak form.
+    Natural,
+    /// Transparent Neumann conditions: the boundary flux of the last step added (000 (2.9)–(2.11)).
+    Transparent,
+    /// Dirichlet values on the boundary layer (000 (2.12)), with the nested inner iteration of
+    /// 000 §2.4 where the caller asks for more than one solve per step.
+    Dirichlet,
+}
+
+impl Bc {
+    /// The name used in reports and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Bc::Natural => "natural",
+            Bc::Transparent => "transparent",
+            Bc::Dirichlet => "dirichlet",
+        }
+    }
+
+    /// Parses `natural`, `transparent` or `dirichlet`.
+    /// Error: [`Error::InvalidInput`] for another name.
+    pub fn parse(s: &str) -> Result<Bc> {
+        match s {
+            "natural" => Ok(Bc::Natural),
+            "transparent" => Ok(Bc::Transparent),
+            "dirichlet" => Ok(Bc::Dirichlet),
+            _ => Err(Error::InvalidInput(format!(
+                "boundary condition {s:?} (natural, transparent or dirichlet)"
+            ))),
+        }
+    }
+}
+
+/// `M + τ L` as one CSR matrix.
+pub fn system_matrix(m: &BandMatrices, tau: f64) -> Result<Csr> {
+    let mut a = m.stiff.clone();
+    a.val.iter_mut().for_each(|v| *v *= tau);
+    for (i, &mi) in m.mass.iter().enumerate() {
+        a.add(i, i, mi)?;
+    }
+    Ok(a)
+}
+
+fn cg_options() -> CgOptions {
+    CgOptions {
+        rtol: 1e-10,
+        atol: 1e-300,
+        max_iter: 20_000,
+        ..CgOptions::default()
+    }
+}
+
+/// Solves `A x = b` over all nodes (natural or transparent conditions), from the guess in `x`;
+/// returns the CG iterations.
+/// Error: [`Error::NotConverged`] when CG fails, [`Error::InvalidField`] for a NaN in the result.
+pub fn solve_all(a: &Csr, b: &[f64], x: &mut [f64]) -> Result<usize> {
+    let d = a.diagonal();
+    let rep = pcg(
+        |v, y| a.matvec(v, y),
+        |r, z| {
+            z.iter_mut()
+                .zip(r)
+                .zip(&d)
+                .for_each(|((z, r), d)| *z = r / d)
+        },
+        b,
+        x,
+        &cg_options(),
+    );
+    finish(rep, x)
+}
+
+/// Solves `R A E x_int = R (b − A x_bd)`: the nodes with `fixed[i]` keep their values in `x`, the
+/// others are solved for (000 (2.12)); returns the CG iterations.
+/// Errors: as [`solve_all`].
+pub fn solve_dirichlet(a: &Csr, b: &[f64], fixed: &[bool], x: &mut [f64]) -> Result<usize> {
+    let d = a.diagonal();
+    let mut r = a.mul(x);
+    r.iter_mut()
+        .zip(b)
+        .zip(fixed)
+        .for_each(|((r, b), &f)| *r = if f { 0.0 } else { b - *r });
+    let mut y = vec![0.0; x.len()];
+    let rep = pcg(
+        |v, out| {
+            a.matvec(v, out);
+            out.iter_mut().zip(fixed).for_each(|(o, &f)| {
+                if f {
+                    *o = 0.0
+                }
+            });
+        },
+        |r, z| {
+            z.iter_mut()
+                .zip(r)
+                .zip(&d)
+                .zip(fixed)
+                .for_each(|(((z, r), d), &f)| *z = if f { 0.0 } else { r / d })
+        },
+        &r,
+        &mut y,
+        &cg_options(),
+    );
+    x.iter_mut().zip(&y).for_each(|(x, y)| *x += y);
+    finish(rep, x)
+}
+
+fn finish(rep: crate::fem::CgReport, x: &[f64]) -> Result<usize> {
+    if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+        return Err(Error::InvalidField {
+            name: "band solution".into(),
+            msg: format!("not finite at band node {i}"),
+        });
+    }
+    if !rep.converged {
+        return Err(Error::NotConverged(format!(
+            "band CG: residual {:.2e} after {} iterations",
+            rep.residual, rep.iterations
+        )));
+    }
+    Ok(rep.iterations)
+}

@@ -1,0 +1,115 @@
+//! Band finite elements (000 §2): convergence orders of the surface heat equation and of mean
+//! curvature motion on coarse grids, and the errors for bad input.
+
+use anisomesh::backends::dtgrid::heat::{sphere_heat, HeatOptions};
+use anisomesh::backends::dtgrid::lattice::C3;
+use anisomesh::backends::dtgrid::scheme::Bc;
+use anisomesh::backends::dtgrid::{DtGrid, SortedBand};
+
+/// The storage the commands use: the DT-Grid run-length encoding (000 §3).
+type B = DtGrid<C3>;
+
+#[test]
+fn dt_grid_and_sorted_storage_give_the_same_solution() {
+    // The band finite elements only see the `Band` seam: both storages must give the same
+    // numbers to the last bit.
+    let opts = HeatOptions::paper(17, 2, Bc::Transparent);
+    let a = sphere_heat::<DtGrid<C3>>(&opts).unwrap();
+    let b = sphere_heat::<SortedBand<C3>>(&opts).unwrap();
+    assert_eq!(a.nodes, b.nodes);
+    assert_eq!(
+        a.error.to_bits(),
+        b.error.to_bits(),
+        "{} vs {}",
+        a.error,
+        b.error
+    );
+}
+
+#[test]
+fn heat_transparent_converges_at_second_order_from_j2() {
+    let mut errs = Vec::new();
+    for n in [17, 33, 65] {
+        let r = sphere_heat::<B>(&HeatOptions::paper(n, 2, Bc::Transparent)).unwrap();
+        println!(
+            "heat transparent j=2 n={n}: {:.3e} ({} nodes)",
+            r.error, r.nodes
+        );
+        errs.push(r.error);
+    }
+    let order = (errs[1] / errs[2]).log2();
+    assert!(order > 1.6, "order {order} from {errs:?}");
+}
+
+#[test]
+fn heat_natural_on_the_thinnest_band_does_not_converge_at_second_order() {
+    let mut errs = Vec::new();
+    for bc in [Bc::Natural, Bc::Transparent] {
+        let r = sphere_heat::<B>(&HeatOptions::paper(65, 1, bc)).unwrap();
+        println!("heat {} j=1 n=65: {:.3e}", bc.name(), r.error);
+        errs.push(r.error);
+    }
+    assert!(errs[0] > 2.0 * errs[1], "{errs:?}");
+}
+
+use anisomesh::backends::dtgrid::mcf::{sphere_mcf, McfOptions};
+
+fn mcf_errors(j: usize, inner: usize, tau_of_h: impl Fn(f64) -> f64, ns: &[usize]) -> Vec<f64> {
+    ns.iter()
+        .map(|&n| {
+            let h = 1.0 / (n - 1) as f64;
+            let o = McfOptions {
+                j,
+                inner,
+                ..McfOptions::default()
+            };
+            let r = sphere_mcf::<B>(n, 0.25, 0.0059, tau_of_h(h), &o).unwrap();
+            println!(
+                "mcf j={j} inner={inner} n={n}: error {:.3e} radius {:.5} exact {:.5} solves/step {:.2}",
+                r.error, r.radius_final, r.radius_exact, r.mean_solves
+            );
+            r.error
+        })
+        .collect()
+}
+
+#[test]
+fn mcf_with_inner_iterations_converges() {
+    // 000 Table 2.2 (j = 2, τ = h²): 0.0128, 0.0028; measured 0.0135, 0.0059.
+    let e = mcf_errors(2, 5, |h| h * h, &[17, 33]);
+    let order = (e[0] / e[1]).log2();
+    assert!(order > 0.9, "order {order} from {e:?}");
+}
+
+#[test]
+fn mcf_without_inner_iterations_does_not_converge() {
+    // 000 Table 2.2 (j = 1, τ = h/8, no inner iteration): 0.026, 0.051; measured 0.018, 0.032.
+    let e = mcf_errors(1, 1, |h| h / 8.0, &[17, 33]);
+    assert!(e[1] > e[0], "{e:?}");
+}
+
+#[test]
+fn bad_input_gives_typed_errors() {
+    use anisomesh::backends::dtgrid::lattice::Lattice;
+    use anisomesh::backends::dtgrid::mcf::McfState;
+    use anisomesh::Error;
+    let o = McfOptions::default();
+    // A sphere that vanishes before t_end: the motion stops with EmptyLevelSet.
+    let r = sphere_mcf::<B>(17, 0.1, 0.01, 1.0 / 128.0, &o);
+    assert!(matches!(r, Err(Error::EmptyLevelSet(_))), "{r:?}");
+    // A shape that does not fit in the grid with its band.
+    let lat = Lattice::unit(17).unwrap();
+    let r = McfState::<B>::new(lat, 2, &|p| p.length() - 0.48);
+    assert!(matches!(r, Err(Error::InvalidInput(_))), "{r:?}");
+    // A NaN in the level-set function.
+    let r = McfState::<B>::new(lat, 1, &|p| {
+        if p.x > 0.2 {
+            f64::NAN
+        } else {
+            p.length() - 0.3
+        }
+    });
+    assert!(matches!(r, Err(Error::InvalidField { .. })), "{r:?}");
+    // Dirichlet conditions are not a heat option.
+    assert!(sphere_heat::<B>(&HeatOptions::paper(17, 1, Bc::Dirichlet)).is_err());
+}
