@@ -61,6 +61,18 @@ pub struct AdvectArgs {
     /// Restore the initial area after each period.
     #[arg(long)]
     mass_correction: bool,
+    /// Geometric redistancing after each period (on/off).
+    #[arg(long)]
+    redistance: Option<bool>,
+    /// Limited quadratic interpolation at the feet instead of P1.
+    #[arg(long)]
+    quadratic: bool,
+    /// RK4 sub-steps of the feet per period.
+    #[arg(long)]
+    substeps: Option<usize>,
+    /// Split/collapse cycle cap of each adaptation.
+    #[arg(long)]
+    max_cycles: Option<usize>,
     /// Output directory (advect.json, advect.csv, advect_final.mesh/.sol/.vtu, PNG frames).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -103,6 +115,10 @@ pub fn run(a: AdvectArgs) -> Result<()> {
     s.periods = a.periods.unwrap_or(s.periods);
     s.fixed_point_iterations = a.fixed_point_iterations.unwrap_or(s.fixed_point_iterations);
     s.mass_correction = a.mass_correction;
+    s.redistance = a.redistance.unwrap_or(s.redistance);
+    s.quadratic = a.quadratic;
+    s.substeps = a.substeps.unwrap_or(s.substeps);
+    s.max_cycles = a.max_cycles.unwrap_or(s.max_cycles);
     s.snapshot_times = (1..4).map(|k| case.t_end * k as f64 / 4.0).collect();
     let spinner = Spinner::start("advecting");
     let r = adv::run(&case, &s);

@@ -41,6 +41,12 @@ pub struct RunSettings {
     pub fixed_point_iterations: usize,
     /// Split/collapse cycle cap of each adaptation.
     pub max_cycles: usize,
+    /// Geometric redistancing after each period.
+    pub redistance: bool,
+    /// Quadratic (limited) interpolation at the feet instead of P1.
+    pub quadratic: bool,
+    /// Sub-steps of the feet (RK4) per period.
+    pub substeps: usize,
     /// Restore the initial area after each period.
     pub mass_correction: bool,
     /// Times whose states are kept for the figures.
@@ -57,6 +63,9 @@ impl RunSettings {
             periods: case.periods,
             fixed_point_iterations: 3,
             max_cycles: 4,
+            redistance: true,
+            quadratic: false,
+            substeps: 4,
             mass_correction: false,
             snapshot_times: Vec::new(),
         }
@@ -93,10 +102,20 @@ impl RunSettings {
                 tol: 1e-4,
                 advect: advect::AdvectOptions {
                     limit: true,
+                    foot: advect::FootOptions {
+                        scheme: advect::FootScheme::Rk4,
+                        substeps: self.substeps.max(1),
+                    },
+                    interp: if self.quadratic {
+                        advect::Interpolation::QUADRATIC
+                    } else {
+                        advect::Interpolation::P1
+                    },
                     ..advect::AdvectOptions::default()
                 },
                 ..FixedPointOptions::default()
             },
+            redistance: self.redistance,
             mass_correction: self.mass_correction,
             snapshot_times: self.snapshot_times.clone(),
         }
