@@ -53,7 +53,7 @@ pub fn vortex(t: f64) -> Result<Case> {
         domain: (DVec2::ZERO, DVec2::ONE),
         t_end: t,
         returns: true,
-        periods: (8.0 * t).round().max(8.0) as usize,
+        periods: (4.0 * t).round().max(8.0) as usize,
         sizes: [2.5e-4, 0.05, 2.5e-4, 1e-3],
     })
 }

@@ -61,7 +61,7 @@ impl RunSettings {
             sizes: case.sizes,
             grade: 1.0,
             periods: case.periods,
-            fixed_point_iterations: 3,
+            fixed_point_iterations: 2,
             max_cycles: 4,
             redistance: true,
             quadratic: false,
