@@ -73,6 +73,13 @@ pub struct AdvectArgs {
     /// Split/collapse cycle cap of each adaptation.
     #[arg(long)]
     max_cycles: Option<usize>,
+    /// Compare anisotropic, isotropic adapted and uniform meshes at several accuracies (and
+    /// FreeFem++ where installed) at equal error.
+    #[arg(long)]
+    compare: bool,
+    /// A small comparison (coarse meshes, seconds to minutes).
+    #[arg(long, requires = "compare")]
+    quick: bool,
     /// Output directory (advect.json, advect.csv, advect_final.mesh/.sol/.vtu, PNG frames).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -119,6 +126,14 @@ pub fn run(a: AdvectArgs) -> Result<()> {
     s.quadratic = a.quadratic;
     s.substeps = a.substeps.unwrap_or(s.substeps);
     s.max_cycles = a.max_cycles.unwrap_or(s.max_cycles);
+    if a.compare {
+        let spinner = Spinner::start("comparing mesh families");
+        let c = adv::compare::compare(&case, &s, &a.output, a.quick);
+        spinner.finish();
+        print!("{}", c?.summary());
+        println!("wrote {}", a.output.display());
+        return Ok(());
+    }
     s.snapshot_times = (1..4).map(|k| case.t_end * k as f64 / 4.0).collect();
     let spinner = Spinner::start("advecting");
     let r = adv::run(&case, &s);

@@ -6,6 +6,8 @@
 //! Modules: [`cases`], [`run`](mod@run), [`output`].
 
 pub mod cases;
+pub mod compare;
+pub mod freefem;
 pub mod output;
 pub mod run;
 

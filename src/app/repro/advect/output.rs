@@ -1,6 +1,7 @@
 //! The files of `anisomesh advect`: `advect.json` (the report), `advect.csv` (the measures after
 //! each period), the final mesh and level set (`advect_final.mesh` + `.sol`, `advect_final.vtu`)
-//! and the frames (`advect_frames.png`: the zero level over the mesh at the kept times, and
+//! and the frames (`advect_frames.png`: the zero level over the mesh at the kept times,
+//! `advect_half.png`: the kept state nearest the middle of the run, full size, and
 //! `advect_final.png`: the final zero level over the initial one).
 
 use super::run::AdvectReport;
@@ -86,6 +87,21 @@ fn write_frames(dir: &Path, report: &AdvectReport, r: &RunResult) -> Result<()> 
         )?);
     }
     RgbImage::side_by_side(&panels)?.save_png(&dir.join("advect_frames.png"))?;
+    // The state halfway (the most stretched interface of a time-reversed flow), full size.
+    let half = 0.5 * (r.initial.time + r.last.time);
+    if let Some(s) = r
+        .snapshots
+        .iter()
+        .min_by(|a, b| (a.time - half).abs().total_cmp(&(b.time - half).abs()))
+    {
+        let title = format!(
+            "t = {:.3}: {} vertices, interface length {:.4}",
+            s.time,
+            s.mesh.n_points(),
+            anisomesh::levelset::interface::interface_length(&s.mesh, &s.u)?
+        );
+        frame(s, view, title, 1100)?.save_png(&dir.join("advect_half.png"))?;
+    }
     let mut polylines = lines(&r.initial, BLUE, 2)?;
     polylines.extend(lines(&r.last, RED, 1)?);
     let plot = MeshPlot {
