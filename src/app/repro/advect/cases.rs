@@ -58,14 +58,20 @@ pub fn vortex(t: f64) -> Result<Case> {
     })
 }
 
-/// The four-vortex deformation with reversal time `t`: the same disk,
-/// `u = sin(4π(x + ½)) sin(4π(y + ½)) cos(πt/T)`, `v = cos(4π(x + ½)) cos(4π(y + ½)) cos(πt/T)`.
+/// The four-vortex deformation with reversal time `t`: the disk `r = 0.15` centred at
+/// `(0.5, 0.5)`, `u = sin(4π(x + ½)) sin(4π(y + ½)) cos(πt/T)`,
+/// `v = cos(4π(x + ½)) cos(4π(y + ½)) cos(πt/T)`. The cells of this field are closed between
+/// `y = 1/8` and `y = 7/8` only (`v ≠ 0` on the walls `y = 0, 1`): the single vortex's disk at
+/// `(0.5, 0.75)` reaches above `y = 7/8` and is carried out of the square, so the disk is
+/// centred where its cells are closed.
 pub fn deformation(t: f64) -> Result<Case> {
     let velocity = ExprVelocity::parse(&format!(
         "sin(4*pi*(x+0.5))*sin(4*pi*(y+0.5))*cos(pi*t/{t}); cos(4*pi*(x+0.5))*cos(4*pi*(y+0.5))*cos(pi*t/{t})"
     ))?;
     Ok(Case {
         name: "deformation".into(),
+        shape_source: "sqrt((x-0.5)^2+(y-0.5)^2)-0.15".into(),
+        phi0: disk(DVec2::new(0.5, 0.5), 0.15),
         periods: (16.0 * t).round().max(8.0) as usize,
         velocity,
         t_end: t,
