@@ -3,7 +3,7 @@
 //! [`anisomesh::advect::run`] with its report, the output files and figures, and the comparison
 //! of mesh families at equal error.
 //!
-//! Modules: [`cases`], [`run`](mod@run), [`output`].
+//! Modules: [`cases`], [`run`](mod@run), [`output`], [`compare`] and [`freefem`].
 
 pub mod cases;
 pub mod compare;
