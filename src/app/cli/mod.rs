@@ -2,6 +2,7 @@
 //! the library's public API.
 
 mod adapt;
+mod advect;
 mod bench;
 mod convert;
 mod crosscheck;
@@ -36,6 +37,8 @@ enum Command {
     /// Adapts a mesh to a shape, an expression, a level set or a metric (default: the Zalesak
     /// disk at the paper's setting); writes .mesh, .vtu, .png and report.json.
     Adapt(adapt::AdaptArgs),
+    /// Any shape in any velocity field, or the single vortex / deformation / Zalesak cases.
+    Advect(advect::AdvectArgs),
     /// The Zalesak slotted-disk rotation (004 §5.1): area and perimeter after one revolution.
     Zalesak(flows::ZalesakArgs),
     /// The level-set redistancing experiments of 003 §8 (tables 8.1-8.4, volume drift).
@@ -114,6 +117,7 @@ pub fn run(cli: Cli) -> Result<()> {
             output,
         }) => shape::run(name.as_deref(), expr.as_deref(), &mesh, &output),
         Some(Command::Adapt(a)) => adapt::run(a),
+        Some(Command::Advect(a)) => advect::run(a),
         Some(Command::Zalesak(a)) => flows::zalesak(a),
         Some(Command::Reinit(a)) => flows::reinit(a),
         Some(Command::Convergence(a)) => flows::convergence(a),

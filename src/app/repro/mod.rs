@@ -1,6 +1,7 @@
 //! Benchmark flows: one file per benchmark, each returning a typed report.
 
 pub mod adapt_run;
+pub mod advect;
 pub mod band_memory;
 pub mod convergence;
 pub mod couette;

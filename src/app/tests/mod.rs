@@ -2,6 +2,7 @@
 //! asserting the measured numbers they report.
 
 mod adapt_gradation;
+mod advect_cases;
 mod advect_zalesak;
 mod convergence_fronts;
 mod convergence_sweep;
