@@ -21,15 +21,17 @@
 //!
 //! Files: `mod.rs` (the contract), `report.rs` (step reports, curvature samples, triangle
 //! surfaces), `implicit.rs` (a closure as an implicit shape), `adapted/` (the anisotropic
-//! adapted mesh of 004).
+//! adapted mesh of 004), `fitted/` (the interface-fitted mesh of 001).
 
 pub mod adapted;
 pub mod dtgrid;
+pub mod fitted;
 mod implicit;
 mod report;
 
 pub use crate::levelset::TriangleSurface;
 pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme, Redistancing};
+pub use fitted::{fit, FitOptions, FittedMesh};
 pub use implicit::FnShape;
 pub use report::{CurvatureSamples, PhaseTimes, StepReport};
 
