@@ -6,6 +6,7 @@ mod advect_zalesak;
 mod convergence_fronts;
 mod convergence_sweep;
 mod couette_bench;
+mod fit_peers;
 mod peers_glue;
 mod plot_figures;
 mod reinit_drift;
