@@ -3,6 +3,7 @@
 
 use anisomesh::backends::fitted::{fit, FitOptions, FittedMesh};
 use anisomesh::io::{self, SolField};
+use anisomesh::levelset::nodal_distance;
 use anisomesh::{Error, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -109,6 +110,26 @@ pub fn print_report(r: &FitReport, report: Option<&Path>) -> Result<()> {
         println!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// `anisomesh adapt --fit`: reads `<dir>/<name>.mesh` (the adapted mesh), evaluates the shape
+/// (or expression; the Zalesak disk without either) at its vertices, fits its zero level and
+/// writes `<dir>/<name>_fitted.mesh`.
+pub fn fit_adapted(dir: &Path, name: &str, shape: Option<&str>, expr: Option<&str>) -> Result<()> {
+    let start = Instant::now();
+    let mesh = io::read_mesh(&dir.join(format!("{name}.mesh")))?;
+    let shape_name = match (shape, expr) {
+        (None, None) => Some("zalesak"),
+        (s, _) => s,
+    };
+    let shape = super::shape::chosen_shape(shape_name, expr)?;
+    let u = nodal_distance(&mesh, shape.as_ref());
+    let f = fit(&mesh, &u, &FitOptions::default())?;
+    f.mesh.check()?;
+    let out = dir.join(format!("{name}_fitted.mesh"));
+    io::write_mesh(&out, &f.mesh)?;
+    println!("wrote {}", out.display());
+    print_report(&report_of(&f, start.elapsed().as_secs_f64()), None)
 }
 
 /// Runs `anisomesh fit`.
