@@ -3,7 +3,7 @@
 //! boundary contacts are handled, and bad input is refused with a typed error.
 
 use anisomesh::backends::fitted::{
-    fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE,
+    fit, snapped_values, vertex_curvature, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE,
 };
 use anisomesh::levelset::{enclosed_area, interface_length, nodal_distance, Circle, Zalesak};
 use anisomesh::{DVec2, Error, GridPattern, Mesh2};
@@ -214,4 +214,74 @@ fn bad_input_is_refused() {
         fit(&base, &pos[1..], &FitOptions::default()),
         Err(Error::InvalidField { .. })
     ));
+}
+
+/// Max relative curvature error on the interface nodes of the fitted mesh (001 §5: the vertex
+/// curvatures interpolated linearly onto the cut points), for `phi` with zero level the circle
+/// of radius 1/4 about (1/2, 1/2) on an `n x n` grid of the unit square.
+fn interface_curvature_error(n: usize, phi: &dyn Fn(DVec2) -> f64) -> f64 {
+    let base = unit(n, GridPattern::Right);
+    let u: Vec<f64> = base.points.iter().map(|&p| phi(p)).collect();
+    let k = vertex_curvature(&base, &u).unwrap();
+    let kv: Vec<f64> = k.kappa.iter().map(|x| x.unwrap_or(f64::NAN)).collect();
+    let f = fit(&base, &u, &FitOptions::default()).unwrap();
+    // Linear along the cut edges (kv is NaN only on the boundary, which Γ does not reach).
+    let mut ext = kv.clone();
+    ext.extend(
+        f.cuts
+            .iter()
+            .map(|&([a, b], s)| (1.0 - s) * kv[a as usize] + s * kv[b as usize]),
+    );
+    let mut err = 0.0f64;
+    for [a, b] in f.interface_edges() {
+        for v in [a, b] {
+            err = err.max((ext[v as usize] - 4.0).abs() / 4.0);
+        }
+    }
+    assert_eq!(k.at_limit, 0);
+    err
+}
+
+fn slope(h: &[f64], e: &[f64]) -> f64 {
+    let n = h.len() as f64;
+    let (x, y): (Vec<f64>, Vec<f64>) = h.iter().zip(e).map(|(h, e)| (h.ln(), e.ln())).unzip();
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(&y).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = x.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn curvature_by_local_averaging_is_second_order_for_any_normalisation() {
+    let c = DVec2::new(0.5, 0.5);
+    let cone = |p: DVec2| (p - c).length() - 0.25;
+    let tilted = |p: DVec2| 7.3 * ((p - c).length() - 0.25) * (1.0 + 0.4 * (p.x - 0.2 * p.y));
+    let ns = [16usize, 32, 64, 128];
+    let h: Vec<f64> = ns.iter().map(|&n| 1.0 / n as f64).collect();
+    for (name, phi) in [
+        ("cone", &cone as &dyn Fn(DVec2) -> f64),
+        ("tilted", &tilted),
+    ] {
+        let e: Vec<f64> = ns
+            .iter()
+            .map(|&n| interface_curvature_error(n, phi))
+            .collect();
+        let s = slope(&h, &e);
+        eprintln!("{name}: errors {e:?}, slope {s:.3}");
+        assert!(s >= 1.9, "{name}: slope {s} (errors {e:?})");
+    }
+    // At the cone's apex, where the level sets are tiny circles, κ_h is of the order of its bound.
+    let base = unit(16, GridPattern::Right);
+    let u: Vec<f64> = base.points.iter().map(|&p| cone(p)).collect();
+    let k = vertex_curvature(&base, &u).unwrap();
+    let v = base
+        .points
+        .iter()
+        .position(|p| (*p - c).length() < 1e-12)
+        .unwrap();
+    // The exact bound on the right-diagonal grid is (2 + √2)/h, below 001's 3√2/h.
+    assert!((k.limit[v] - (2.0 + 2f64.sqrt()) * 16.0).abs() < 1e-9);
+    assert!(k.limit[v] < 3.0 * 2f64.sqrt() * 16.0);
+    let kv = k.kappa[v].unwrap();
+    assert!(kv > 0.5 * k.limit[v] && kv <= k.limit[v], "{kv}");
 }

@@ -5,10 +5,13 @@
 //! [`FittedMesh::restrict_to_base`]; base fields reach the fitted mesh with
 //! [`FittedMesh::extend_from_base`].
 //!
-//! Files: `fit.rs` (cutting and labelling).
+//! Files: `fit.rs` (cutting and labelling), `curvature.rs` (curvature by local averaging,
+//! 001 (5.2)).
 
+mod curvature;
 mod fit;
 
+pub use curvature::{vertex_curvature, VertexCurvature};
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
