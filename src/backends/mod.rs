@@ -19,19 +19,21 @@
 //! of freedom, phase times, solver iterations, whether the inner loops converged), and "a valid
 //! result whose inner loop did not converge" is reported there, not as an error.
 //!
-//! Files: `mod.rs` (the contract), `report.rs` (step reports, curvature samples, triangle
-//! surfaces), `implicit.rs` (a closure as an implicit shape), `adapted/` (the anisotropic
-//! adapted mesh of 004), `surface/` (parametric curves and surfaces moved by Dziuk's scheme,
-//! 002: the reference the level-set back ends are cross-checked against).
+//! Files: `mod.rs` (the contract), `report.rs` (step reports, curvature samples), `implicit.rs` (a closure as an implicit shape), `adapted/` (the anisotropic
+//! adapted mesh of 004), `dtgrid/` (Q1 finite elements on a DT-Grid narrow band, 000),
+//! `fitted/` (the interface-fitted mesh of 001), `surface/` (parametric curves and surfaces moved
+//! by Dziuk's scheme, 002: the reference the level-set back ends are cross-checked against).
 
 pub mod adapted;
 pub mod dtgrid;
+pub mod fitted;
 mod implicit;
 mod report;
 pub mod surface;
 
 pub use crate::levelset::TriangleSurface;
 pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme, Redistancing};
+pub use fitted::{fit, FitOptions, FittedMesh};
 pub use implicit::FnShape;
 pub use report::{CurvatureSamples, PhaseTimes, StepReport};
 pub use surface::{ParametricCurve, ParametricSurface};

@@ -49,6 +49,10 @@ pub struct AdaptArgs {
     /// Output directory.
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
+    /// Also cut the adapted mesh along the shape's zero level (interface edges labelled 10,
+    /// inside 3, outside 2) and write it beside the adapted mesh as `<name>_fitted.mesh`.
+    #[arg(long, conflicts_with = "input")]
+    fit: bool,
 }
 
 fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
@@ -178,5 +182,13 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         println!("wrote {}", f.display());
     }
     println!("wrote {}", opts.out_dir.join("report.json").display());
+    if a.fit {
+        super::fit::fit_adapted(
+            &opts.out_dir,
+            &opts.name,
+            a.shape.as_deref(),
+            a.expr.as_deref(),
+        )?;
+    }
     Ok(())
 }

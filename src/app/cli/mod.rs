@@ -7,6 +7,7 @@ mod bench;
 mod convert;
 mod crosscheck;
 mod dtgrid;
+mod fit;
 mod flows;
 mod info;
 mod measure;
@@ -47,6 +48,9 @@ enum Command {
     Convergence(flows::ConvergenceArgs),
     /// The two-phase Couette Stokes flow (004 §5.1) on an adapted (or fitted) mesh.
     Couette(flows::CouetteArgs),
+    /// Cuts a mesh along the zero level of a P1 level set (001 §2): interface edges labelled
+    /// 10, inside 3, outside 2, as mmg2d -ls.
+    Fit(fit::FitArgs),
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
@@ -122,6 +126,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Reinit(a)) => flows::reinit(a),
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
+        Some(Command::Fit(a)) => fit::run(a),
         Some(Command::Bench(b)) => bench::run(b),
         Some(Command::Measure(a)) => measure::run(a),
         Some(Command::Metric(a)) => metric::run(a),

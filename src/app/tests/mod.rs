@@ -8,6 +8,7 @@ mod convergence_fronts;
 mod convergence_sweep;
 mod couette_bench;
 mod crosscheck;
+mod fit_peers;
 mod peers_glue;
 mod plot_figures;
 mod plot_surface;
