@@ -40,6 +40,8 @@ pub struct EditMesh3 {
     pub ball: Vec<Vec<u32>>,
     /// Boundary triangles by sorted vertices, with their labels.
     pub bfaces: HashMap<[u32; 3], i32>,
+    /// Whether each vertex lies on the boundary (on a boundary triangle).
+    pub on_boundary: Vec<bool>,
     /// Removed tetrahedron slots, reused by later edits.
     pub(super) free: Vec<u32>,
 }
@@ -73,6 +75,7 @@ impl EditMesh3 {
             tet_ref: m.tet_ref.clone(),
             ball: vec![Vec::new(); m.n_points()],
             bfaces: HashMap::new(),
+            on_boundary: vec![false; m.n_points()],
             free: Vec::new(),
         };
         for (t, tet) in m.tets.iter().enumerate() {
@@ -81,7 +84,11 @@ impl EditMesh3 {
             }
             for i in 0..4 {
                 if m.neighbours[t][i] == NONE {
-                    e.bfaces.insert(sorted3(tet_face(tet, i)), m.face_ref[t][i]);
+                    let f = tet_face(tet, i);
+                    for v in f {
+                        e.on_boundary[v as usize] = true;
+                    }
+                    e.bfaces.insert(sorted3(f), m.face_ref[t][i]);
                 }
             }
         }
@@ -221,6 +228,9 @@ impl EditMesh3 {
 
     /// Where `v` lies relative to the boundary ([`VertexKind`]).
     pub fn vertex_kind(&self, v: u32) -> VertexKind {
+        if !self.on_boundary[v as usize] {
+            return VertexKind::Interior;
+        }
         let mut fs = Vec::new();
         self.vertex_bfaces(v, &mut fs);
         let Some(&(f0, l0)) = fs.first() else {
@@ -274,6 +284,7 @@ impl EditMesh3 {
     pub(super) fn add_vertex(&mut self, p: DVec3) -> u32 {
         self.points.push(p);
         self.ball.push(Vec::new());
+        self.on_boundary.push(false);
         (self.points.len() - 1) as u32
     }
 
@@ -299,6 +310,7 @@ impl EditMesh3 {
         }
         live.sort_by_key(|x| x.0);
         self.points = old.iter().map(|&v| self.points[v as usize]).collect();
+        self.on_boundary = old.iter().map(|&v| self.on_boundary[v as usize]).collect();
         self.tets = live.iter().map(|x| x.1).collect();
         self.tet_ref = live.iter().map(|x| x.2).collect();
         self.free.clear();
@@ -379,6 +391,18 @@ impl EditMesh3 {
                     "a vertex ball lists tetrahedra that do not contain it",
                 ));
             }
+        }
+        let mut bnd = vec![false; n];
+        for f in self.bfaces.keys() {
+            for &v in f {
+                bnd[v as usize] = true;
+            }
+        }
+        if (0..n).any(|v| !self.ball[v].is_empty() && bnd[v] != self.on_boundary[v]) {
+            return Err(bad(
+                0,
+                "a vertex's boundary flag differs from its boundary triangles",
+            ));
         }
         let unshared = faces.iter().filter(|(_, &c)| c == 1).count();
         if unshared != self.bfaces.len()

@@ -22,6 +22,7 @@ mod topology;
 
 pub use edit::{EditMesh3, VertexKind};
 pub use hilbert::hilbert_order;
+pub use ops::MAX_RING;
 
 use crate::geom::DVec3;
 

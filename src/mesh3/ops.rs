@@ -16,29 +16,26 @@ impl EditMesh3 {
         signed_volume(p[0], p[1], p[2], p[3])
     }
 
+    /// Whether `(a, b)` is an edge (some tetrahedron contains both).
+    #[inline]
+    pub fn is_edge(&self, a: u32, b: u32) -> bool {
+        self.ball[a as usize]
+            .iter()
+            .any(|&t| self.tets[t as usize].contains(&b))
+    }
+
     /// Splits the edge `(a, b)` at `p` (a point of the open segment): every tetrahedron of its
     /// shell becomes two, boundary triangles on the edge become two with the same label.
     /// Returns the new vertex, or `None` (mesh unchanged) when `(a, b)` is not an edge or a
     /// child would not have a positive volume.
     pub fn split_edge(&mut self, a: u32, b: u32, p: DVec3) -> Option<u32> {
+        if !self.split_valid(a, b, p) {
+            return None;
+        }
         let mut shell = Vec::new();
         self.shell(a, b, &mut shell);
-        if shell.is_empty() {
-            return None;
-        }
-        let m = self.points.len() as u32;
+        let m = self.add_vertex(p);
         let sub = |tet: [u32; 4], x: u32| tet.map(|v| if v == x { m } else { v });
-        self.points.push(p);
-        let ok = shell.iter().all(|&t| {
-            let tet = self.tets[t as usize];
-            self.vol(sub(tet, a)) > 0.0 && self.vol(sub(tet, b)) > 0.0
-        });
-        self.points.pop();
-        if !ok {
-            return None;
-        }
-        let m2 = self.add_vertex(p);
-        debug_assert_eq!(m, m2);
         for &t in &shell {
             let tet = self.tets[t as usize];
             let r = self.tet_ref[t as usize];
@@ -47,6 +44,7 @@ impl EditMesh3 {
                     if let Some(l) = self.bfaces.remove(&sorted3([a, b, c])) {
                         self.bfaces.insert(sorted3([a, m, c]), l);
                         self.bfaces.insert(sorted3([m, b, c]), l);
+                        self.on_boundary[m as usize] = true;
                     }
                 }
             }
@@ -55,6 +53,22 @@ impl EditMesh3 {
             self.add_tet(sub(tet, a), r);
         }
         Some(m)
+    }
+
+    /// Whether [`EditMesh3::split_edge`] would split `(a, b)` at `p`: an edge whose children
+    /// all have positive volume.
+    pub fn split_valid(&self, a: u32, b: u32, p: DVec3) -> bool {
+        let mut shell = Vec::new();
+        self.shell(a, b, &mut shell);
+        let at = |tet: [u32; 4], x: u32| {
+            let q = tet.map(|v| if v == x { p } else { self.points[v as usize] });
+            signed_volume(q[0], q[1], q[2], q[3])
+        };
+        !shell.is_empty()
+            && shell.iter().all(|&t| {
+                let tet = self.tets[t as usize];
+                positive(at(tet, a)) && positive(at(tet, b))
+            })
     }
 
     /// The tetrahedra that collapsing `a` onto `b` would leave (each tetrahedron of `a`'s
@@ -83,8 +97,8 @@ impl EditMesh3 {
             return None;
         }
         let mut fa = Vec::new();
-        self.vertex_bfaces(a, &mut fa);
-        if !fa.is_empty() {
+        if self.on_boundary[a as usize] {
+            self.vertex_bfaces(a, &mut fa);
             if !self.is_boundary_edge(a, b) {
                 return None;
             }
@@ -135,7 +149,9 @@ impl EditMesh3 {
     /// [`EditMesh3::collapse_check`].
     pub fn collapse_unchecked(&mut self, a: u32, b: u32) {
         let mut fa = Vec::new();
-        self.vertex_bfaces(a, &mut fa);
+        if self.on_boundary[a as usize] {
+            self.vertex_bfaces(a, &mut fa);
+        }
         for (f, l) in fa {
             self.bfaces.remove(&f);
             if !f.contains(&b) {
@@ -204,14 +220,12 @@ impl EditMesh3 {
     ) -> Option<(f64, Vec<[u32; 4]>)> {
         let ring = self.edge_ring(a, b)?;
         let n = ring.len();
-        let mut nbrs = Vec::new();
         let mut best = [[f64::NEG_INFINITY; MAX_RING]; MAX_RING];
         let mut arg = [[0usize; MAX_RING]; MAX_RING];
         let mut diag_ok = [[true; MAX_RING]; MAX_RING];
         for i in 0..n {
-            self.vertex_neighbours(ring[i], &mut nbrs);
             for j in i + 2..n {
-                if !(i == 0 && j == n - 1) && nbrs.binary_search(&ring[j]).is_ok() {
+                if !(i == 0 && j == n - 1) && self.is_edge(ring[i], ring[j]) {
                     diag_ok[i][j] = false;
                 }
             }
@@ -298,10 +312,7 @@ impl EditMesh3 {
                 .find(|v| !f.contains(v))
         };
         let (d, e) = (apex(ts[0])?, apex(ts[1])?);
-        if self.ball[d as usize]
-            .iter()
-            .any(|&t| self.tets[t as usize].contains(&e))
-        {
+        if self.is_edge(d, e) {
             return None;
         }
         let [x, y, z] = f;
