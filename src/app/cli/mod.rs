@@ -2,6 +2,7 @@
 //! the library's public API.
 
 mod adapt;
+mod adapt3;
 mod bench;
 mod convert;
 mod flows;
