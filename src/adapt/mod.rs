@@ -14,6 +14,9 @@
 //!   `insert.rs`, `refine.rs`, `collapse.rs`, `flip.rs`, `smooth.rs`), each with a pure
 //!   `check` that returns the planned change from metric and quality and an `apply` that calls
 //!   the topology edits of [`crate::mesh`].
+//! - `tet/`: the tetrahedral operators on [`crate::mesh3::EditMesh3`] (split, collapse, edge
+//!   removal and face swaps, smoothing) with their context implementing the same `Remesher`,
+//!   and the 3D fixed point [`run3`] with [`tet_stats`].
 //! - `driver.rs`: [`adapt`], [`AdaptOptions`], [`AdaptReport`].
 //! - `sources.rs`: [`MetricSource`] implementations and metric fields from level sets/Hessians.
 //! - `shape.rs`: [`adapt_to_shape`]; `report.rs`: [`MeshReport`].
@@ -37,6 +40,7 @@
 mod cycle;
 mod params;
 mod pass;
+mod tet;
 mod tri;
 
 mod discrete;
@@ -59,6 +63,9 @@ pub use run::{
 };
 pub use shape::{adapt_mesh_to_shape, adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
+pub use tet::run::{level_set_metric3, run3, Adapted3, Report3, Run3Options, Target3};
+pub use tet::stats::{tet_stats, TetStats};
+pub use tet::{mean_ratio, MetricFn3};
 
 #[cfg(test)]
 mod tests;

@@ -13,6 +13,7 @@ mod sol;
 mod tokens;
 mod validate;
 mod vtk;
+mod vtk3;
 
 pub use atomic::atomic_write;
 pub use gmsh::{
@@ -27,6 +28,7 @@ pub use sol::{
     parse_sol, read_sol, read_sol_for, sym3_from_file, sym3_to_file, write_sol, Sol, SolField,
 };
 pub use vtk::{write_vtu, FieldRef};
+pub use vtk3::write_vtu3;
 
 use crate::error::{Error, MeshDefect, Result};
 use crate::mesh::Mesh2;

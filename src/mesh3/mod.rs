@@ -1,4 +1,5 @@
-//! Tetrahedral meshes (3D), used by the redistancing work (003 §8).
+//! Tetrahedral meshes (3D), used by the redistancing work (003 §8) and the tetrahedral
+//! adaptation (004 §5).
 //!
 //! - [`Mesh3`]: points and positively oriented tetrahedra, face neighbours, sub-domain and
 //!   boundary face labels (`topology.rs`), [`Mesh3::check`], vertex-to-vertex adjacency.
@@ -6,11 +7,22 @@
 //!   cube (`kuhn.rs`).
 //! - [`Mesh3::refine`]: conforming local refinement by newest-vertex bisection (Maubach's tagged
 //!   bisection, compatible with the Kuhn mesh) with closure (`bisect.rs`).
+//! - [`EditMesh3`]: the editable form (vertex balls, boundary triangles with labels, tombstones;
+//!   `edit.rs`) and its local edits (`ops.rs`): edge split, edge collapse with the link
+//!   condition and the boundary rules, face 2-3 swap, edge removal n → 2n − 4, vertex move.
+//! - [`hilbert_order`]: vertex order along a Hilbert curve (`hilbert.rs`).
 
 mod bisect;
 mod check;
+pub mod edit;
+mod hilbert;
 mod kuhn;
+mod ops;
 mod topology;
+
+pub use edit::{EditMesh3, VertexKind};
+pub use hilbert::hilbert_order;
+pub use ops::MAX_RING;
 
 use crate::geom::DVec3;
 
@@ -103,6 +115,20 @@ impl Mesh3 {
             off.push(data.len());
         }
         (off, data)
+    }
+
+    /// Builds a mesh from points and tetrahedra (each oriented positively by swapping two
+    /// vertices where needed), with face neighbours, the given sub-domain labels and boundary
+    /// faces labelled 1. The bisection order of each tetrahedron is its vertex order with tag 3.
+    pub fn from_parts(points: Vec<DVec3>, tets: Vec<[u32; 4]>, tet_ref: Vec<i32>) -> Mesh3 {
+        let n = tets.len();
+        let mut m = Mesh3::from_maubach(
+            points,
+            tets.into_iter().map(|t| (t, 3)).collect(),
+            vec![0; n],
+        );
+        m.tet_ref = tet_ref;
+        m
     }
 
     /// Build from Maubach-ordered tetrahedra, orienting `tets` positively: face neighbours,

@@ -53,6 +53,10 @@ pub struct AdaptArgs {
     /// inside 3, outside 2) and write it beside the adapted mesh as `<name>_fitted.mesh`.
     #[arg(long, conflicts_with = "input")]
     fit: bool,
+    /// Dimension: 2 (triangles) or 3 (tetrahedra in [-1, 1]^3 around --shape star|sphere|torus
+    /// or an --expr in x, y, z).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+    dim: u8,
 }
 
 fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
@@ -71,6 +75,26 @@ fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
 
 /// Runs the job and prints the report.
 pub fn run(a: AdaptArgs) -> Result<()> {
+    if a.dim == 3 {
+        if a.input.is_some() || a.domain.is_some() || a.target_vertices.is_some() {
+            return Err(Error::InvalidInput(
+                "--dim 3 adapts [-1, 1]^3 to --shape or --expr; --input, --domain and \
+                 --target-vertices are 2D options"
+                    .into(),
+            ));
+        }
+        let (metric, iso) = (a.metric.clone(), a.iso);
+        return super::adapt3::run(
+            a.shape.as_deref(),
+            a.expr.as_deref(),
+            |b| LevelSetMetric {
+                isotropic: iso,
+                ..metric.apply(b)
+            },
+            a.max_vertices,
+            &a.output,
+        );
+    }
     let mut opts = AdaptRunOptions {
         run: RunOptions {
             metric: LevelSetMetric {

@@ -2,6 +2,7 @@
 //! the library's public API.
 
 mod adapt;
+mod adapt3;
 mod advect;
 mod bench;
 mod convert;

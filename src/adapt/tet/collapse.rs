@@ -1,0 +1,78 @@
+//! Collapse short edges (004 §3.5): a vertex with an edge shorter than `l_min` in the metric is
+//! merged into the other end of its shortest such edge when the mesh stays valid
+//! ([`crate::mesh3::EditMesh3::collapse_check`]: link condition, positive volumes, boundary
+//! faces kept in their planes, ridges and corners kept), no edge of the new ball is longer than
+//! `l_max`, and no new tetrahedron has a quality below the floor unless the ball was already
+//! worse. Shortest first, an independent set per pass.
+
+use super::Ctx;
+use crate::adapt::pass::{run_pass, Operator};
+
+/// The collapse operator.
+pub(crate) struct Collapse;
+
+impl Operator<Ctx<'_>> for Collapse {
+    type Site = u32;
+    type Key = (u64, u32, u32);
+    type Frozen = ();
+    type Plan = (u32, u32);
+    const SORTED: bool = true;
+
+    fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<u32> {
+        ctx.next_pass();
+        (0..ctx.mesh.points.len() as u32)
+            .filter(|&v| ctx.mesh.alive(v))
+            .collect()
+    }
+
+    fn survey(&self, ctx: &Ctx<'_>, a: u32, _: bool, out: &mut Vec<(Self::Key, Option<()>)>) {
+        let mut nb = Vec::new();
+        ctx.mesh.vertex_neighbours(a, &mut nb);
+        let best = nb
+            .iter()
+            .map(|&b| (ctx.length(a, b), b))
+            .filter(|&(l, _)| l < ctx.l_min)
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        if let Some((l, b)) = best {
+            out.push(((l.to_bits(), a, b), None));
+        }
+    }
+
+    fn admissible(&self, ctx: &Ctx<'_>, (_, a, b): Self::Key) -> bool {
+        ctx.fresh(a) && ctx.fresh(b)
+    }
+
+    fn check(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        (_, a, b): Self::Key,
+        _: Option<()>,
+    ) -> Option<(u32, u32)> {
+        let new = ctx.mesh.collapse_check(a, b)?;
+        let before = ctx.ball_quality(a);
+        let floor = ctx.q_min.min(before);
+        for &t in &new {
+            if ctx.quality_of(t, None) < floor {
+                return None;
+            }
+        }
+        let mut nb = Vec::new();
+        ctx.mesh.vertex_neighbours(a, &mut nb);
+        let lim = ctx.l_max;
+        if nb.iter().any(|&c| c != b && ctx.length(b, c) > lim) {
+            return None;
+        }
+        Some((a, b))
+    }
+
+    fn apply(&mut self, ctx: &mut Ctx<'_>, (a, b): (u32, u32)) {
+        ctx.touch_ball(a);
+        ctx.mesh.collapse_unchecked(a, b);
+        ctx.touch_ball(b);
+    }
+}
+
+/// One collapse pass; returns the number of collapses.
+pub(crate) fn pass(ctx: &mut Ctx<'_>) -> usize {
+    run_pass(&mut Collapse, ctx)
+}

@@ -1,0 +1,239 @@
+//! The tetrahedral operators (004 §3.5 and §5) on [`crate::mesh3::EditMesh3`], driven by a vertex
+//! metric field of [`Sym3`] tensors:
+//! - this file: the operator context [`Ctx`] (mesh, metric, optional metric source, lengths and
+//!   quality in the metric, pass stamps) and its [`Remesher`] implementation, so that the shared
+//!   cycle ([`super::cycle::run_cycles`]) drives the tetrahedral operators as it drives the
+//!   triangle ones;
+//! - `split.rs` (split long edges at their metric midpoint), `collapse.rs` (collapse short
+//!   edges), `swap.rs` (edge removal n → 2n − 4 and face 2-3 swaps, in the place of the 2D flips:
+//!   a topology without a 2D analogue), `smooth.rs` (move vertices): each implements
+//!   [`super::pass::Operator`] with a pure `check` (metric and quality on the current state) and
+//!   an `apply` that calls the edits of [`crate::mesh3::EditMesh3`];
+//! - `run.rs`: the fixed point in 3D ([`run3`]) and its report.
+//!
+//! The quality is the mean ratio in the metric, `12 (3 |K|_M)^{2/3} / Σ l_M(e)²` (1 for a
+//! regular tetrahedron of the metric, 0 when flat), with `M` the arithmetic mean of the four
+//! vertex metrics; it equals `Q_ani^{-2/3}` of 004 §3.4 for that `M`.
+
+pub(crate) mod collapse;
+pub mod run;
+pub(crate) mod smooth;
+pub(crate) mod split;
+pub mod stats;
+pub(crate) mod swap;
+
+use super::cycle::Remesher;
+use super::options::PassKind;
+use crate::error::{Error, Result};
+use crate::geom::DVec3;
+use crate::mesh3::{hilbert_order, EditMesh3};
+use crate::metric::length::geometric_mean_length;
+use crate::metric::{lerp_log, Sym3};
+
+/// A metric given as a function of position (exact, re-evaluated at every new or moved vertex).
+pub type MetricFn3<'a> = &'a (dyn Fn(DVec3) -> Sym3 + Sync);
+
+/// The operator context: the mesh, its vertex metric, where new metrics come from, the length
+/// bounds and the pass stamps that make each pass change an independent set.
+pub(crate) struct Ctx<'a> {
+    pub mesh: EditMesh3,
+    pub metric: Vec<Sym3>,
+    pub source: Option<MetricFn3<'a>>,
+    pub l_min: f64,
+    pub l_max: f64,
+    /// Quality floor of collapses and moves (mean ratio): a change may not create a
+    /// tetrahedron worse than this unless the ball was already worse.
+    pub q_min: f64,
+    /// Per vertex: the pass that last changed its ball.
+    pub stamp: Vec<u32>,
+    pub pass: u32,
+    /// Quality of every tetrahedron at the start of the current swap pass (survey only).
+    pub tq: Vec<f64>,
+}
+
+impl<'a> Ctx<'a> {
+    pub fn new(mesh: EditMesh3, metric: Vec<Sym3>, source: Option<MetricFn3<'a>>) -> Ctx<'a> {
+        let n = mesh.points.len();
+        Ctx {
+            mesh,
+            metric,
+            source,
+            l_min: std::f64::consts::FRAC_1_SQRT_2,
+            l_max: std::f64::consts::SQRT_2,
+            q_min: 0.3,
+            stamp: vec![0; n],
+            pass: 0,
+            tq: Vec::new(),
+        }
+    }
+
+    /// Starts a pass: a new stamp.
+    pub fn next_pass(&mut self) -> u32 {
+        self.pass += 1;
+        self.pass
+    }
+
+    /// Whether `v` is live and its ball unchanged in the current pass.
+    #[inline]
+    pub fn fresh(&self, v: u32) -> bool {
+        self.mesh.alive(v) && self.stamp[v as usize] != self.pass
+    }
+
+    /// Marks the vertices of the ball of `v` (and `v`) as changed in this pass.
+    pub fn touch_ball(&mut self, v: u32) {
+        if self.stamp.len() < self.mesh.points.len() {
+            self.stamp.resize(self.mesh.points.len(), 0);
+        }
+        for &t in &self.mesh.ball[v as usize] {
+            for w in self.mesh.tets[t as usize] {
+                self.stamp[w as usize] = self.pass;
+            }
+        }
+        self.stamp[v as usize] = self.pass;
+    }
+
+    /// Metric length of the edge `(a, b)` (geometric interpolation of the length density,
+    /// [`crate::metric::edge_length`]).
+    #[inline]
+    pub fn length(&self, a: u32, b: u32) -> f64 {
+        let e = self.mesh.points[b as usize] - self.mesh.points[a as usize];
+        geometric_mean_length(
+            self.metric[a as usize].quad(e).sqrt(),
+            self.metric[b as usize].quad(e).sqrt(),
+        )
+    }
+
+    /// Metric length of the segment `pa`–`pb` with end metrics `ma`, `mb`.
+    #[inline]
+    pub fn length_at(pa: DVec3, pb: DVec3, ma: &Sym3, mb: &Sym3) -> f64 {
+        let e = pb - pa;
+        geometric_mean_length(ma.quad(e).sqrt(), mb.quad(e).sqrt())
+    }
+
+    /// The metric at a new point `p` on the edge `(a, b)` at parameter `t`: from the source, or
+    /// log-Euclidean interpolation of the end metrics.
+    pub fn metric_on_edge(&self, a: u32, b: u32, t: f64, p: DVec3) -> Sym3 {
+        match self.source {
+            Some(f) => f(p),
+            None => lerp_log(&self.metric[a as usize], &self.metric[b as usize], t),
+        }
+    }
+
+    /// Quality of the tetrahedron `t` given by vertex indices, with the metric of vertex
+    /// `moved` taken as `m_moved` at `p_moved` when it is one of them.
+    #[inline]
+    pub fn quality_of(&self, t: [u32; 4], moved: Option<(u32, DVec3, &Sym3)>) -> f64 {
+        let mut p = [DVec3::ZERO; 4];
+        let mut m = [Sym3::default(); 4];
+        for k in 0..4 {
+            match moved {
+                Some((v, pv, mv)) if v == t[k] => {
+                    p[k] = pv;
+                    m[k] = *mv;
+                }
+                _ => {
+                    p[k] = self.mesh.points[t[k] as usize];
+                    m[k] = self.metric[t[k] as usize];
+                }
+            }
+        }
+        mean_ratio(p, &m)
+    }
+
+    /// Caches the quality of every live tetrahedron in `tq` and returns those below `q`.
+    pub fn bad_tets(&mut self, q: f64) -> Vec<u32> {
+        use rayon::prelude::*;
+        let tq: Vec<f64> = (0..self.mesh.tets.len() as u32)
+            .into_par_iter()
+            .map(|t| {
+                if self.mesh.tets[t as usize][0] == crate::mesh::NONE {
+                    f64::INFINITY
+                } else {
+                    self.tet_quality(t)
+                }
+            })
+            .collect();
+        self.tq = tq;
+        (0..self.tq.len() as u32)
+            .filter(|&t| self.tq[t as usize] < q)
+            .collect()
+    }
+
+    /// Quality of the live tetrahedron with index `t`.
+    #[inline]
+    pub fn tet_quality(&self, t: u32) -> f64 {
+        self.quality_of(self.mesh.tets[t as usize], None)
+    }
+
+    /// The worst quality in the ball of `v`.
+    pub fn ball_quality(&self, v: u32) -> f64 {
+        self.mesh.ball[v as usize]
+            .iter()
+            .map(|&t| self.tet_quality(t))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    fn renumber_spatially(&mut self) {
+        let order = hilbert_order(&self.mesh.points, |v| self.mesh.alive(v as u32));
+        let old = self.mesh.compact(Some(&order));
+        self.metric = old.iter().map(|&v| self.metric[v as usize]).collect();
+        self.stamp = vec![0; old.len()];
+    }
+}
+
+/// Mean ratio of the tetrahedron `p` in the arithmetic mean of the vertex metrics `m`:
+/// `12 (3 |K|_M)^{2/3} / Σ_e e^T M e`, in (0, 1], 1 for a regular tetrahedron of the metric;
+/// 0 or negative when `p` is flat or inverted.
+pub fn mean_ratio(p: [DVec3; 4], m: &[Sym3; 4]) -> f64 {
+    let mm = m[0].add(&m[1]).add(&m[2]).add(&m[3]).scale(0.25);
+    let vol = crate::mesh3::signed_volume(p[0], p[1], p[2], p[3]);
+    if vol <= 0.0 {
+        return vol;
+    }
+    let mut s = 0.0;
+    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+        s += mm.quad(p[j] - p[i]);
+    }
+    let vm = vol * mm.det().max(0.0).sqrt();
+    let c = (3.0 * vm).cbrt();
+    12.0 * c * c / s
+}
+
+impl Remesher for Ctx<'_> {
+    fn n_vertices(&self) -> usize {
+        self.mesh.points.len()
+    }
+
+    fn run_pass(&mut self, kind: PassKind) -> usize {
+        match kind {
+            PassKind::Split => split::pass(self),
+            PassKind::Collapse => collapse::pass(self),
+            PassKind::Flip => swap::pass(self),
+            PassKind::Smooth => smooth::pass(self),
+        }
+    }
+
+    fn renumber(&mut self) {
+        self.renumber_spatially();
+    }
+
+    fn grade(&mut self, _beta: f64) -> Result<()> {
+        Err(Error::InvalidInput(
+            "metric gradation during the adaptation is not available on tetrahedra".into(),
+        ))
+    }
+
+    fn smoothing_settled(&mut self) {}
+
+    fn check(&self) -> Result<()> {
+        self.mesh.check()?;
+        if self.metric.len() != self.mesh.points.len() {
+            return Err(Error::InvalidInput(format!(
+                "{} vertex metrics for {} vertices",
+                self.metric.len(),
+                self.mesh.points.len()
+            )));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,196 @@
+//! The fixed point in 3D (004 §5): a tetrahedral mesh adapted to a metric given as a function
+//! of position — either a metric field directly, or the geometric metric of 004 eq. (6) of an
+//! implicit surface with exact derivatives — starting from the Kuhn mesh of a box (by default
+//! `[−1, 1]³`) or from a given mesh. The metric is evaluated exactly at every new or moved
+//! vertex, so one run of the split / collapse / swap / smoothing cycle
+//! ([`crate::adapt::cycle::run_cycles`]) reaches the fixed point of the metric.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::stats::{tet_stats, TetStats};
+use super::{Ctx, MetricFn3};
+use crate::adapt::cycle::run_cycles;
+use crate::adapt::{AdaptOptions, AdaptReport, LevelSetMetric};
+use crate::error::{Error, Result};
+use crate::geom::DVec3;
+use crate::levelset::{enclosed_measure, interface_measure, Shape};
+use crate::mesh3::{EditMesh3, Mesh3};
+use crate::metric::{geometric_metric, Sym3};
+
+/// What to adapt to.
+pub enum Target3<'a> {
+    /// A metric field, evaluated at every vertex.
+    Metric(MetricFn3<'a>),
+    /// An implicit surface: the metric of 004 eq. (6) from its exact derivatives
+    /// ([`level_set_metric3`]).
+    Shape(&'a dyn Shape<DVec3>),
+}
+
+/// Options of [`run3`].
+#[derive(Debug, Clone)]
+pub struct Run3Options {
+    /// The box of the start mesh (default `[−1, 1]³`).
+    pub lo: DVec3,
+    /// Upper corner of the box.
+    pub hi: DVec3,
+    /// Cells per direction of the Kuhn start mesh (default 8).
+    pub cells: usize,
+    /// The eq. (6) parameters for a shape target (ε, hmin, hmax, band, grade, anisotropy).
+    pub metric: LevelSetMetric,
+    /// The cycle options (length bounds, cycles, final sweeps, per-pass checks, vertex guard;
+    /// gradation is not available on tetrahedra).
+    pub adapt: AdaptOptions,
+}
+
+impl Default for Run3Options {
+    fn default() -> Self {
+        Run3Options {
+            lo: DVec3::splat(-1.0),
+            hi: DVec3::splat(1.0),
+            cells: 8,
+            metric: LevelSetMetric {
+                eps: 1e-3,
+                hmin: 1e-2,
+                hmax: 0.2,
+                max_aniso: 1e3,
+                band: 5e-3,
+                grade: 1.0,
+                analytic: true,
+                isotropic: false,
+            },
+            adapt: AdaptOptions::default().max_vertices(Some(5_000_000)),
+        }
+    }
+}
+
+/// The numbers of a 3D run.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report3 {
+    /// Vertices of the adapted mesh.
+    pub vertices: usize,
+    /// Tetrahedra.
+    pub tetrahedra: usize,
+    /// Edge lengths and quality in the final metric.
+    pub stats: TetStats,
+    /// Fraction of edges with metric length in `[1/√2, √2]` (as in `stats`).
+    pub edge_length_in_range: f64,
+    /// Worst mean-ratio quality (as in `stats`).
+    pub quality_min: f64,
+    /// Volume inside the P1 zero level of the shape (shape targets).
+    pub volume: Option<f64>,
+    /// The shape's exact enclosed volume, when known.
+    pub exact_volume: Option<f64>,
+    /// Area of the P1 zero level (shape targets).
+    pub surface_area: Option<f64>,
+    /// Wall-clock seconds of the whole run.
+    pub seconds: f64,
+    /// The cycle's passes.
+    pub adapt: AdaptReport,
+}
+
+/// An adapted mesh with its metric, the level set at its vertices (shape targets) and the
+/// report.
+#[derive(Debug, Clone)]
+pub struct Adapted3 {
+    /// The adapted mesh.
+    pub mesh: Mesh3,
+    /// The vertex metric.
+    pub metric: Vec<Sym3>,
+    /// The shape's signed distance at the vertices (shape targets).
+    pub level_set: Option<Vec<f64>>,
+    /// The numbers.
+    pub report: Report3,
+}
+
+/// 004 eq. (6) in 3D with the band and bounds of `lm` ([`LevelSetMetric`]): the bounded
+/// `∇u ∇uᵀ / hmin² + |D²u| / ε` where `|u| < band`; outside, the same sizes grown linearly
+/// with the distance, `h ← min(hmax, h + grade (|u| − band))`.
+pub fn level_set_metric3(lm: &LevelSetMetric, u: f64, grad: DVec3, hess: &Sym3) -> Sym3 {
+    let b = lm.bounds();
+    let mut m = b.apply(&geometric_metric(grad, hess, lm.hmin, lm.eps));
+    if lm.isotropic {
+        let (l, _) = m.eigen();
+        m = Sym3::iso(1.0 / l.iter().fold(0.0f64, |a, &x| a.max(x)).sqrt());
+    }
+    let d = u.abs() - lm.band;
+    if d > 0.0 {
+        if !lm.grade.is_finite() {
+            return Sym3::iso(lm.hmax);
+        }
+        m = m.map_eigen(|l| {
+            let h = (1.0 / l.sqrt() + lm.grade * d).min(lm.hmax);
+            1.0 / (h * h)
+        });
+    }
+    m
+}
+
+/// Adapts the Kuhn mesh of the box of `opts` (or `start`, when given) to `target` and reports
+/// the result. Errors: invalid options or start mesh, a metric that is not SPD and finite at a
+/// vertex, more vertices than `opts.adapt.max_vertices`, a defect found by the per-pass check.
+pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> Result<Adapted3> {
+    let clock = Instant::now();
+    if opts.adapt.gradation.is_some() {
+        return Err(Error::InvalidInput(
+            "gradation during the adaptation is not available on tetrahedra".into(),
+        ));
+    }
+    let lm = opts.metric;
+    let shape_metric;
+    let (source, shape): (MetricFn3<'_>, Option<&dyn Shape<DVec3>>) = match target {
+        Target3::Metric(f) => (f, None),
+        Target3::Shape(s) => {
+            lm.validate()?;
+            shape_metric =
+                move |p: DVec3| level_set_metric3(&lm, s.distance(p), s.gradient(p), &s.hessian(p));
+            (&shape_metric, Some(s))
+        }
+    };
+    let mesh = match start {
+        Some(m) => m.clone(),
+        None => Mesh3::kuhn_box(opts.lo, opts.hi, [opts.cells; 3])?,
+    };
+    let edit = EditMesh3::from_mesh(&mesh)?;
+    let metric: Vec<Sym3> = edit.points.iter().map(|&p| source(p)).collect();
+    for (v, m) in metric.iter().enumerate() {
+        m.validate(v)?;
+    }
+    let mut ctx = Ctx::new(edit, metric, Some(source));
+    ctx.l_min = opts.adapt.l_min;
+    ctx.l_max = opts.adapt.l_max;
+    let mut rep = AdaptReport::default();
+    run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
+    let (mesh, old) = ctx.mesh.to_mesh();
+    let metric: Vec<Sym3> = old.iter().map(|&v| ctx.metric[v as usize]).collect();
+    rep.seconds = clock.elapsed().as_secs_f64();
+    let stats = tet_stats(&mesh, &metric);
+    let (level_set, volume, area) = match shape {
+        Some(s) => {
+            let u: Vec<f64> = mesh.points.iter().map(|&p| s.distance(p)).collect();
+            let vol = enclosed_measure(&mesh.points, &mesh.tets, &u)?;
+            let area = interface_measure(&mesh.points, &mesh.tets, &u)?;
+            (Some(u), Some(vol), Some(area))
+        }
+        None => (None, None, None),
+    };
+    let report = Report3 {
+        vertices: mesh.n_points(),
+        tetrahedra: mesh.n_tets(),
+        stats,
+        edge_length_in_range: stats.edge_length_in_range,
+        quality_min: stats.quality_min,
+        volume,
+        exact_volume: shape.and_then(|s| s.exact_area()),
+        surface_area: area,
+        seconds: clock.elapsed().as_secs_f64(),
+        adapt: rep,
+    };
+    Ok(Adapted3 {
+        mesh,
+        metric,
+        level_set,
+        report,
+    })
+}

@@ -1,0 +1,147 @@
+//! Swaps: the tetrahedral counterpart of the 2D flips, with no 2D analogue in their topology.
+//! An interior edge whose shell has a tetrahedron of quality below [`Q_SWAP`] is removed when
+//! the best retriangulation of its ring (3 → 2, n → 2n − 4 tetrahedra,
+//! [`crate::mesh3::EditMesh3::best_edge_removal`]) raises the worst quality of the shell; then an
+//! interior face between two tetrahedra one of which is below [`Q_SWAP`] is swapped 2 → 3 when
+//! the three new tetrahedra are better than the two old ones. Worst first, an independent set
+//! per pass, improvements by at least 2% so that no swap undoes another.
+
+use super::Ctx;
+use crate::adapt::pass::{run_pass, Operator};
+use crate::mesh3::edit::{sorted3, tet_face};
+
+/// Shells and face pairs whose worst quality (mean ratio) is below this are examined.
+pub(crate) const Q_SWAP: f64 = 0.6;
+
+/// Relative gain in the worst quality a swap must bring.
+const GAIN: f64 = 1.02;
+
+/// The edge-removal operator.
+pub(crate) struct EdgeRemoval;
+
+impl Operator<Ctx<'_>> for EdgeRemoval {
+    type Site = (u64, u32, u32);
+    type Key = (u64, u32, u32);
+    type Frozen = ();
+    type Plan = (u32, u32, Vec<[u32; 4]>);
+    const SORTED: bool = true;
+
+    /// The edges of the tetrahedra below [`Q_SWAP`], each once with the worst quality of
+    /// those tetrahedra.
+    fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
+        ctx.next_pass();
+        let bad = ctx.bad_tets(Q_SWAP);
+        let mut e: Vec<(u32, u32, u64)> = Vec::with_capacity(6 * bad.len());
+        for t in bad {
+            let tet = ctx.mesh.tets[t as usize];
+            let q = ctx.tq[t as usize].max(0.0).to_bits();
+            for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                e.push((tet[i].min(tet[j]), tet[i].max(tet[j]), q));
+            }
+        }
+        e.sort_unstable();
+        e.dedup_by_key(|x| (x.0, x.1));
+        e.into_iter().map(|(a, b, q)| (q, a, b)).collect()
+    }
+
+    fn survey(&self, _: &Ctx<'_>, s: Self::Site, _: bool, out: &mut Vec<(Self::Key, Option<()>)>) {
+        out.push((s, None));
+    }
+
+    fn admissible(&self, ctx: &Ctx<'_>, (_, a, b): Self::Key) -> bool {
+        ctx.fresh(a) && ctx.fresh(b)
+    }
+
+    fn check(
+        &mut self,
+        ctx: &mut Ctx<'_>,
+        (_, a, b): Self::Key,
+        _: Option<()>,
+    ) -> Option<Self::Plan> {
+        let mut shell = Vec::new();
+        ctx.mesh.shell(a, b, &mut shell);
+        let q0 = shell
+            .iter()
+            .map(|&t| ctx.tet_quality(t))
+            .fold(f64::INFINITY, f64::min);
+        let c = &*ctx;
+        let (q, tets) = c.mesh.best_edge_removal(a, b, |t| c.quality_of(t, None))?;
+        (q > GAIN * q0).then_some((a, b, tets))
+    }
+
+    fn apply(&mut self, ctx: &mut Ctx<'_>, (a, b, tets): Self::Plan) {
+        ctx.touch_ball(a);
+        ctx.touch_ball(b);
+        ctx.mesh.replace_shell(a, b, &tets);
+    }
+}
+
+/// The face 2-3 swap operator.
+pub(crate) struct FaceSwap;
+
+impl Operator<Ctx<'_>> for FaceSwap {
+    type Site = (u64, [u32; 3]);
+    type Key = (u64, [u32; 3]);
+    type Frozen = ();
+    type Plan = ([u32; 3], [[u32; 4]; 3]);
+    const SORTED: bool = true;
+
+    /// The interior faces of the tetrahedra below [`Q_SWAP`], each once with the worst
+    /// quality of those tetrahedra.
+    fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
+        ctx.next_pass();
+        let bad = ctx.bad_tets(Q_SWAP);
+        let mut fs: Vec<([u32; 3], u64)> = Vec::with_capacity(4 * bad.len());
+        for t in bad {
+            let tet = ctx.mesh.tets[t as usize];
+            let q = ctx.tq[t as usize].max(0.0).to_bits();
+            for i in 0..4 {
+                let f = sorted3(tet_face(&tet, i));
+                if !ctx.mesh.bfaces.contains_key(&f) {
+                    fs.push((f, q));
+                }
+            }
+        }
+        fs.sort_unstable();
+        fs.dedup_by_key(|x| x.0);
+        fs.into_iter().map(|(f, q)| (q, f)).collect()
+    }
+
+    fn survey(&self, _: &Ctx<'_>, s: Self::Site, _: bool, out: &mut Vec<(Self::Key, Option<()>)>) {
+        out.push((s, None));
+    }
+
+    fn admissible(&self, ctx: &Ctx<'_>, (_, f): Self::Key) -> bool {
+        f.iter().all(|&v| ctx.fresh(v))
+    }
+
+    fn check(&mut self, ctx: &mut Ctx<'_>, (_, f): Self::Key, _: Option<()>) -> Option<Self::Plan> {
+        let new = ctx.mesh.face_swap_check(f)?;
+        let q0 = ctx
+            .mesh
+            .face_tets(f)
+            .iter()
+            .map(|&t| ctx.tet_quality(t))
+            .fold(f64::INFINITY, f64::min);
+        let q1 = new
+            .iter()
+            .map(|&t| ctx.quality_of(t, None))
+            .fold(f64::INFINITY, f64::min);
+        (q1 > GAIN * q0).then_some((f, new))
+    }
+
+    fn apply(&mut self, ctx: &mut Ctx<'_>, (f, new): Self::Plan) {
+        for v in f {
+            ctx.touch_ball(v);
+        }
+        ctx.mesh.face_swap_apply(f, new);
+        for v in f {
+            ctx.touch_ball(v);
+        }
+    }
+}
+
+/// One swap pass (edge removals, then face swaps); returns the number of swaps.
+pub(crate) fn pass(ctx: &mut Ctx<'_>) -> usize {
+    run_pass(&mut EdgeRemoval, ctx) + run_pass(&mut FaceSwap, ctx)
+}

@@ -1,0 +1,72 @@
+//! The tetrahedral adaptation: conformity to an analytic metric with the mesh checked after
+//! every pass, a shape target, and independence of the thread count.
+
+use anisomesh::adapt::{run3, AdaptOptions, Run3Options, Target3};
+use anisomesh::geom::DVec3;
+use anisomesh::levelset::Sphere;
+use anisomesh::metric::Sym3;
+
+/// The UGAWG cube-linear metric with a coarser `h0`: `h_x = h_y = 0.1`,
+/// `h_z = h0 + 2 (0.1 − h0) |z − 0.5|`.
+fn cube_linear(h0: f64) -> impl Fn(DVec3) -> Sym3 + Sync {
+    move |p: DVec3| {
+        let hz = h0 + 2.0 * (0.1 - h0) * (p.z - 0.5).abs();
+        Sym3 {
+            xx: 100.0,
+            yy: 100.0,
+            zz: 1.0 / (hz * hz),
+            ..Sym3::default()
+        }
+    }
+}
+
+fn unit_cube(cells: usize) -> Run3Options {
+    Run3Options {
+        lo: DVec3::ZERO,
+        hi: DVec3::ONE,
+        cells,
+        adapt: AdaptOptions::default().check_each_pass(true),
+        ..Run3Options::default()
+    }
+}
+
+#[test]
+fn cube_linear_coarse_conformity() {
+    let f = cube_linear(0.05);
+    let a = run3(Target3::Metric(&f), None, &unit_cube(4)).unwrap();
+    // h0 = 0.05: about 3,000 vertices.
+    a.mesh.check().unwrap();
+    let r = &a.report;
+    eprintln!(
+        "cube-linear h0 0.05: {} vertices, {} tets, in range {:.4}, qmin {:.3}, qmean {:.3}, {:.2}s, {} cycles",
+        r.vertices, r.tetrahedra, r.edge_length_in_range, r.quality_min, r.stats.quality_mean, r.seconds, r.adapt.cycles
+    );
+    assert!((a.mesh.volume() - 1.0).abs() < 1e-12);
+    assert!(r.edge_length_in_range > 0.9, "{}", r.edge_length_in_range);
+    assert!(r.quality_min > 0.1, "{}", r.quality_min);
+}
+
+#[test]
+fn sphere_volume_and_area() {
+    let s = Sphere {
+        centre: DVec3::ZERO,
+        radius: 0.5,
+    };
+    let mut o = Run3Options::default();
+    o.metric.eps = 1e-2;
+    o.metric.hmin = 5e-2;
+    o.metric.hmax = 0.3;
+    o.metric.band = 2e-2;
+    o.adapt = o.adapt.check_each_pass(true);
+    let a = run3(Target3::Shape(&s), None, &o).unwrap();
+    let r = &a.report;
+    let vol = r.volume.unwrap();
+    let area = r.surface_area.unwrap();
+    let exact = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
+    eprintln!(
+        "sphere eps 1e-2: {} vertices, volume {vol:.5} (exact {exact:.5}), area {area:.5}, in range {:.3}, qmin {:.3}, {:.2}s",
+        r.vertices, r.edge_length_in_range, r.quality_min, r.seconds
+    );
+    assert!((vol - exact).abs() / exact < 0.05);
+    assert!((area - std::f64::consts::PI).abs() / std::f64::consts::PI < 0.05);
+}

@@ -1,0 +1,186 @@
+//! The local edits of `EditMesh3`, each followed by the invariant check of both the editable
+//! form and the compacted `Mesh3`, and the volume kept.
+
+use anisomesh::geom::DVec3;
+use anisomesh::mesh3::{EditMesh3, Mesh3, VertexKind};
+
+fn cube(n: usize) -> EditMesh3 {
+    let m = Mesh3::kuhn_box(DVec3::ZERO, DVec3::ONE, [n, n, n]).unwrap();
+    EditMesh3::from_mesh(&m).unwrap()
+}
+
+fn valid(e: &EditMesh3) {
+    e.check().unwrap();
+    let (m, _) = e.to_mesh();
+    m.check().unwrap();
+    assert!((m.volume() - 1.0).abs() < 1e-12, "volume {}", m.volume());
+}
+
+fn edges(e: &EditMesh3) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    let mut nb = Vec::new();
+    for a in 0..e.points.len() as u32 {
+        e.vertex_neighbours(a, &mut nb);
+        out.extend(nb.iter().filter(|&&b| b > a).map(|&b| (a, b)));
+    }
+    out
+}
+
+#[test]
+fn split_every_edge_once() {
+    let mut e = cube(2);
+    let nb0 = e.bfaces.len();
+    for (a, b) in edges(&e) {
+        let p = 0.5 * (e.points[a as usize] + e.points[b as usize]);
+        assert!(e.split_edge(a, b, p).is_some());
+        valid(&e);
+    }
+    assert!(e.bfaces.len() > nb0);
+    // Not an edge any more: refused, mesh unchanged.
+    assert!(e.split_edge(0, 26, DVec3::splat(0.5)).is_none());
+    valid(&e);
+}
+
+#[test]
+fn collapses_keep_the_boundary() {
+    let mut e = cube(3);
+    let n_corner = |e: &EditMesh3| {
+        [DVec3::ZERO, DVec3::ONE, DVec3::X, DVec3::Y, DVec3::Z]
+            .iter()
+            .filter(|&&c| {
+                e.points
+                    .iter()
+                    .enumerate()
+                    .any(|(v, &p)| p == c && e.alive(v as u32))
+            })
+            .count()
+    };
+    let mut done = 0;
+    for (a, b) in edges(&e) {
+        for (x, y) in [(a, b), (b, a)] {
+            if e.alive(x) && e.alive(y) && e.collapse_edge(x, y) {
+                done += 1;
+                valid(&e);
+            }
+        }
+    }
+    assert!(done > 10, "{done} collapses");
+    assert_eq!(n_corner(&e), 5, "corners are kept");
+    // Every boundary vertex still lies on a face of the cube.
+    for v in 0..e.points.len() as u32 {
+        if e.alive(v) && e.vertex_kind(v) != VertexKind::Interior {
+            let p = e.points[v as usize];
+            assert!(p.to_array().iter().any(|&c| c == 0.0 || c == 1.0), "{p}");
+        }
+    }
+}
+
+#[test]
+fn edge_removal_and_face_swap_roundtrip() {
+    let mut e = cube(3);
+    // Move the interior vertices off the grid so that the swaps are not degenerate.
+    for v in 0..e.points.len() as u32 {
+        let p = e.points[v as usize];
+        let w = DVec3::new((7.3 * p.y).sin(), (5.1 * p.z).cos(), (3.7 * p.x).sin());
+        e.move_vertex(v, p + 0.04 * w);
+    }
+    valid(&e);
+    let mut removed = 0;
+    let mut swapped = 0;
+    for (a, b) in edges(&e) {
+        if !(e.alive(a) && e.alive(b)) {
+            continue;
+        }
+        if let Some((q, tets)) = e.best_edge_removal(a, b, |_| 1.0) {
+            assert!(q > 0.0);
+            e.replace_shell(a, b, &tets);
+            removed += 1;
+            valid(&e);
+            // Swap a face of the new tetrahedra 2-3 and remove the edge it creates 3-2.
+            for t in &tets {
+                let mut f = [t[1], t[2], t[3]];
+                f.sort_unstable();
+                if let Some(new) = e.face_swap_check(f) {
+                    e.face_swap_apply(f, new);
+                    swapped += 1;
+                    valid(&e);
+                    let (d, x) = (new[0][0], new[0][1]);
+                    let (_, back) = e.best_edge_removal(d, x, |_| 1.0).unwrap();
+                    assert_eq!(back.len(), 2);
+                    e.replace_shell(d, x, &back);
+                    valid(&e);
+                    break;
+                }
+            }
+        }
+    }
+    assert!(
+        removed > 0 && swapped > 0,
+        "{removed} removals, {swapped} swaps"
+    );
+}
+
+#[test]
+fn vertex_moves_respect_faces_and_ridges() {
+    let mut e = cube(2);
+    let centre = e
+        .points
+        .iter()
+        .position(|&p| p == DVec3::splat(0.5))
+        .unwrap() as u32;
+    assert_eq!(e.vertex_kind(centre), VertexKind::Interior);
+    assert!(e.move_vertex(centre, DVec3::new(0.55, 0.45, 0.5)));
+    valid(&e);
+    // Too far: a tetrahedron would invert.
+    assert!(!e.move_vertex(centre, DVec3::new(1.5, 0.5, 0.5)));
+    let face = e
+        .points
+        .iter()
+        .position(|&p| p == DVec3::new(0.5, 0.5, 0.0))
+        .unwrap() as u32;
+    assert!(matches!(e.vertex_kind(face), VertexKind::Face(_)));
+    assert!(e.move_vertex(face, DVec3::new(0.6, 0.4, 0.0)));
+    assert!(
+        !e.move_vertex(face, DVec3::new(0.6, 0.4, 0.01)),
+        "off its plane"
+    );
+    let ridge = e
+        .points
+        .iter()
+        .position(|&p| p == DVec3::new(0.5, 0.0, 0.0))
+        .unwrap() as u32;
+    assert_eq!(e.vertex_kind(ridge), VertexKind::Feature);
+    assert!(!e.move_vertex(ridge, DVec3::new(0.55, 0.0, 0.0)));
+    valid(&e);
+}
+
+#[test]
+fn compaction_along_the_hilbert_curve_keeps_the_mesh() {
+    let mut e = cube(3);
+    for (a, b) in edges(&e).into_iter().take(40) {
+        if e.alive(a) && e.alive(b) {
+            e.collapse_edge(a, b);
+        }
+    }
+    let order = anisomesh::mesh3::hilbert_order(&e.points, |v| e.alive(v as u32));
+    let n = order.len();
+    let old = e.compact(Some(&order));
+    assert_eq!(old.len(), n);
+    assert_eq!(e.points.len(), n);
+    valid(&e);
+}
+
+#[test]
+fn a_surface_without_volume_is_refused() {
+    let m = Mesh3::default();
+    assert!(EditMesh3::from_mesh(&m).is_ok());
+    let bad = Mesh3::from_parts(
+        vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+        vec![[0, 1, 2, 3]],
+        vec![0],
+    );
+    let mut flat = bad.clone();
+    flat.points[3] = DVec3::new(0.3, 0.3, 0.0);
+    assert!(EditMesh3::from_mesh(&flat).is_err());
+    assert!(EditMesh3::from_mesh(&bad).is_ok());
+}
