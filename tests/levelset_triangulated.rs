@@ -330,42 +330,6 @@ fn torus_surface_is_closed_and_converges() {
     assert!(t.distance(DVec3::ZERO) > 0.19 && t.distance(DVec3::new(0.4, 0.0, 0.0)) < -0.19);
 }
 
-/// Speed: 10⁶ queries on a surface of about 10⁵ triangles (the icosphere of level 6, 81 920
-/// triangles), checked against `|p| − 1` within the chord error. Run with
-/// `cargo test --release --test levelset_triangulated -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn million_queries_speed() {
-    let s = icosphere(6);
-    let t0 = std::time::Instant::now();
-    let sphere = shape(&s);
-    let build = t0.elapsed().as_secs_f64();
-    let pts = points(1_000_000, 1.5, 5);
-    let t0 = std::time::Instant::now();
-    let d = sphere.distances(&pts);
-    let query = t0.elapsed().as_secs_f64();
-    for (&p, &dp) in pts.iter().zip(&d).step_by(997) {
-        assert!((dp - (p.length() - 1.0)).abs() < 2e-4);
-    }
-    // Points in the shell 0.8 < |p| < 1.2 (a narrow band around the surface).
-    let shell: Vec<DVec3> = pts
-        .iter()
-        .map(|&p| p.normalize_or(DVec3::X) * (1.0 + 0.2 * (p.x / 1.5)))
-        .collect();
-    let t0 = std::time::Instant::now();
-    let d = sphere.distances(&shell);
-    let band = t0.elapsed().as_secs_f64();
-    for (&p, &dp) in shell.iter().zip(&d).step_by(997) {
-        assert!((dp - (p.length() - 1.0)).abs() < 2e-4);
-    }
-    eprintln!(
-        "{} triangles: build {build:.3} s, 10^6 queries in [-1.5, 1.5]^3 {query:.3} s, \
-         10^6 queries in the band 0.8 < |p| < 1.2 {band:.3} s ({} threads)",
-        s.triangles.len(),
-        rayon::current_num_threads()
-    );
-}
-
 /// The shipped star meshes (`meshes/star.obj`, level 6, and `meshes/star_coarse.obj`, level 4,
 /// written by `anisomesh triangulate`) read back as closed, outward surfaces with the volume
 /// errors of their levels, and their distance vanishes on the exact star (within the chord

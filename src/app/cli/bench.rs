@@ -23,6 +23,9 @@ pub enum Bench {
     /// DT-Grid storage (000 §3): memory and build time of a sphere band, a streaming cell
     /// pass, and OpenVDB holding the same voxels in the same run.
     Band(crate::app::repro::band_memory::BandArgs),
+    /// Exact signed distance to a triangulated surface: hierarchy build and query speed on an
+    /// icosphere, checked against the sphere within the chord error.
+    SurfaceDistance(crate::app::repro::surface_distance::SurfaceDistanceArgs),
 }
 
 /// Options of `anisomesh bench speed`.
@@ -81,6 +84,7 @@ pub fn run(b: Bench) -> Result<()> {
         Bench::Peers(a) => peers(a),
         Bench::Redistance(a) => redistance(a),
         Bench::Band(a) => crate::app::repro::band_memory::run(a),
+        Bench::SurfaceDistance(a) => crate::app::repro::surface_distance::run(a),
     }
 }
 

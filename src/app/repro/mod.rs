@@ -11,5 +11,6 @@ pub mod dtgrid;
 pub mod peers;
 pub mod reinit;
 pub mod speed;
+pub mod surface_distance;
 pub mod surface_mcf;
 pub mod zalesak;
