@@ -41,7 +41,8 @@ impl ParametricSurface {
                 "icosphere: need a positive radius and at most 9 levels (got {radius}, {level})"
             )));
         }
-        let (mut pts, mut tris) = icosahedron();
+        let base = crate::levelset::icosphere(0);
+        let (mut pts, mut tris) = (base.points, base.triangles);
         for _ in 0..level {
             let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
             let mut next = Vec::with_capacity(4 * tris.len());
@@ -210,49 +211,6 @@ impl ParametricSurface {
 
 fn degenerate(c: usize) -> Error {
     Error::InvalidInput(format!("surface element {c} has a vanishing area element"))
-}
-
-/// The unit icosahedron, triangles counter-clockwise seen from outside.
-fn icosahedron() -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let p = (1.0 + 5f64.sqrt()) / 2.0;
-    let pts = [
-        [-1.0, p, 0.0],
-        [1.0, p, 0.0],
-        [-1.0, -p, 0.0],
-        [1.0, -p, 0.0],
-        [0.0, -1.0, p],
-        [0.0, 1.0, p],
-        [0.0, -1.0, -p],
-        [0.0, 1.0, -p],
-        [p, 0.0, -1.0],
-        [p, 0.0, 1.0],
-        [-p, 0.0, -1.0],
-        [-p, 0.0, 1.0],
-    ]
-    .map(|a| DVec3::from_array(a).normalize());
-    let tris = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    (pts.to_vec(), tris)
 }
 
 #[cfg(test)]
