@@ -10,6 +10,7 @@
 //! Also the perturbed sphere `x (1 + ½ sin(2π(x + y)) cos(¼πz))` of 002 flowing, written as
 //! `.vtu` frames.
 
+use crate::app::plot::surface::{render_surfaces, SurfacePanel, View};
 use anisomesh::backends::surface::{theta_step, ParametricSurface};
 use anisomesh::error::{Error, Result};
 use anisomesh::geom::DVec3;
@@ -215,7 +216,8 @@ pub fn perturbed(x: DVec3) -> DVec3 {
 }
 
 /// Flows 002's perturbed sphere (unit icosphere at `level`, order `order`) with `steps` steps
-/// of `tau` and writes `frame_NNN.vtu` every `every` steps into `dir`; returns the paths.
+/// of `tau` and writes `frame_NNN.vtu` every `every` steps into `dir`, and four of the frames
+/// shaded side by side as `perturbed.png` beside `dir`; returns the paths.
 pub fn perturbed_frames(
     dir: &Path,
     order: usize,
@@ -229,16 +231,35 @@ pub fn perturbed_frames(
     let mut s = ParametricSurface::icosphere(1.0, level, order)?;
     s.map_nodes(perturbed);
     let mut paths = Vec::new();
+    let mut shots = Vec::new();
     for n in 0..=steps {
         if n % every.max(1) == 0 || n == steps {
             let path = dir.join(format!("frame_{n:03}.vtu"));
-            write_surface_vtu(&path, &s.to_triangle_surface())?;
+            let surface = s.to_triangle_surface();
+            write_surface_vtu(&path, &surface)?;
             paths.push(path);
+            shots.push((n as f64 * tau, surface));
         }
         if n < steps {
             theta_step(&mut s, tau, theta)?;
         }
     }
+    let picks: Vec<usize> = if shots.len() <= 4 {
+        (0..shots.len()).collect()
+    } else {
+        (0..4).map(|k| k * (shots.len() - 1) / 3).collect()
+    };
+    let panels: Vec<SurfacePanel> = picks
+        .iter()
+        .map(|&k| SurfacePanel {
+            surface: &shots[k].1,
+            scalars: None,
+            title: format!("t = {:.4}", shots[k].0),
+        })
+        .collect();
+    let png = dir.with_extension("png");
+    render_surfaces(&png, &panels, &View::default())?;
+    paths.push(png);
     Ok(paths)
 }
 
