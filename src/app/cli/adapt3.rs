@@ -1,7 +1,7 @@
 //! `anisomesh adapt --dim 3`: adapt the Kuhn mesh of `[−1, 1]³` to an implicit surface (the 004
 //! star, a sphere, a torus or an expression in x, y, z) with the geometric metric of 004 eq. (6)
 //! and write the mesh (`.mesh`), a `.vtu` with the level set and the quality, and
-//! `report.json`.
+//! `report.json` and a PNG (the zero level shaded, the cut at `y = 0` by mean ratio).
 
 use anisomesh::adapt::{run3, tet_stats, LevelSetMetric, Run3Options, Target3};
 use anisomesh::geom::DVec3;
@@ -130,8 +130,54 @@ pub fn run(
     let json = serde_json::to_string_pretty(r).map_err(|e| Error::InvalidInput(e.to_string()))?;
     let report_path = out_dir.join("report.json");
     atomic_write(&report_path, |w| w.write_all(json.as_bytes()))?;
-    for p in [&mesh_path, &vtu_path, &report_path] {
+    let png_path = out_dir.join(format!("{name}3d.png"));
+    picture(&png_path, m, &u, &q)?;
+    for p in [&mesh_path, &vtu_path, &report_path, &png_path] {
         println!("wrote {}", p.display());
     }
     Ok(())
+}
+
+/// The zero level of the P1 level set `u` shaded, beside the cut through the tetrahedra at
+/// `y = 0` coloured by their mean ratio.
+fn picture(
+    path: &std::path::Path,
+    m: &anisomesh::mesh3::Mesh3,
+    u: &[f64],
+    q: &[f64],
+) -> Result<()> {
+    use crate::app::plot::surface::{
+        render_surfaces_rgb, render_tet_cut_rgb, CutPlane, SurfacePanel, View,
+    };
+    let mut surface = anisomesh::levelset::TriangleSurface::default();
+    if u.len() == m.n_points() {
+        for t in 0..m.n_tets() {
+            surface.add_tet_zero_level(m.tet_points(t), m.tets[t].map(|v| u[v as usize]));
+        }
+        surface.weld(1e-12);
+    }
+    let cut = render_tet_cut_rgb(
+        m,
+        &CutPlane {
+            point: DVec3::ZERO,
+            normal: DVec3::Y,
+        },
+        q,
+        "cut y = 0, mean ratio",
+        &View::facing(DVec3::NEG_Y),
+    )?;
+    let image = if surface.triangles.is_empty() {
+        cut
+    } else {
+        let zero = render_surfaces_rgb(
+            &[SurfacePanel {
+                surface: &surface,
+                scalars: None,
+                title: "zero level".into(),
+            }],
+            &View::default(),
+        )?;
+        crate::app::plot::RgbImage::side_by_side(&[zero, cut])?
+    };
+    image.save_png(path)
 }
