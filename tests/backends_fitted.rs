@@ -3,7 +3,8 @@
 //! boundary contacts are handled, and bad input is refused with a typed error.
 
 use anisomesh::backends::fitted::{
-    fit, snapped_values, vertex_curvature, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE,
+    fit, interface_curvature, snapped_values, vertex_curvature, FitOptions, FittedMesh, REF_INSIDE,
+    REF_INTERFACE,
 };
 use anisomesh::levelset::{enclosed_area, interface_length, nodal_distance, Circle, Zalesak};
 use anisomesh::{DVec2, Error, GridPattern, Mesh2};
@@ -222,24 +223,17 @@ fn bad_input_is_refused() {
 fn interface_curvature_error(n: usize, phi: &dyn Fn(DVec2) -> f64) -> f64 {
     let base = unit(n, GridPattern::Right);
     let u: Vec<f64> = base.points.iter().map(|&p| phi(p)).collect();
-    let k = vertex_curvature(&base, &u).unwrap();
-    let kv: Vec<f64> = k.kappa.iter().map(|x| x.unwrap_or(f64::NAN)).collect();
-    let f = fit(&base, &u, &FitOptions::default()).unwrap();
-    // Linear along the cut edges (kv is NaN only on the boundary, which Γ does not reach).
-    let mut ext = kv.clone();
-    ext.extend(
-        f.cuts
-            .iter()
-            .map(|&([a, b], s)| (1.0 - s) * kv[a as usize] + s * kv[b as usize]),
+    let (points, kappa, at_limit) = interface_curvature(&base, &u).unwrap();
+    assert_eq!(at_limit, 0);
+    assert!(
+        points.len() > 4 * n / 2,
+        "{} interface nodes on the {n} grid",
+        points.len()
     );
-    let mut err = 0.0f64;
-    for [a, b] in f.interface_edges() {
-        for v in [a, b] {
-            err = err.max((ext[v as usize] - 4.0).abs() / 4.0);
-        }
-    }
-    assert_eq!(k.at_limit, 0);
-    err
+    kappa
+        .iter()
+        .map(|k| (k - 4.0).abs() / 4.0)
+        .fold(0.0f64, f64::max)
 }
 
 fn slope(h: &[f64], e: &[f64]) -> f64 {

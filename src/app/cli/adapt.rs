@@ -59,7 +59,7 @@ pub struct AdaptArgs {
     dim: u8,
 }
 
-fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
+pub(crate) fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
     let v: Vec<f64> = s
         .split(',')
         .map(|x| x.trim().parse::<f64>())

@@ -7,6 +7,7 @@ mod advect;
 mod bench;
 mod convert;
 mod crosscheck;
+mod curvature;
 mod dtgrid;
 mod fit;
 mod flows;
@@ -64,6 +65,9 @@ enum Command {
     /// Band finite elements (000 §2): the heat equation and mean curvature motion on a band.
     #[command(subcommand)]
     Dtgrid(dtgrid::DtGrid),
+    /// The curvature of an expression's zero level by local averaging on interface-fitted
+    /// grids (001 (5.2)), against the exact curvature, with the observed order.
+    Curvature(curvature::CurvatureArgs),
     /// Counts, bounding box, labels and quality statistics of a mesh file (.mesh, .msh).
     Info {
         /// The mesh file.
@@ -136,6 +140,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Triangulate(a)) => triangulate::run(a),
         Some(Command::Surface(s)) => surface::run(s),
         Some(Command::Crosscheck(a)) => crosscheck::run(a),
+        Some(Command::Curvature(a)) => curvature::run(a),
         Some(Command::Dtgrid(d)) => dtgrid::run(d),
         None => run(Cli::parse_from(["anisomesh", "adapt"])),
     }

@@ -80,3 +80,46 @@ pub fn vertex_curvature(mesh: &Mesh2, phi: &[f64]) -> Result<VertexCurvature> {
         at_limit,
     })
 }
+
+/// The curvature on the zero level of `phi` as 001 §5 measures it: the vertex curvatures of
+/// [`vertex_curvature`] interpolated linearly onto the nodes of the fitted interface (the
+/// points where the zero level crosses the edges of `mesh`, and the vertices it passes
+/// through). Returns the nodes, their curvatures and the number of vertices at the bound.
+///
+/// Errors: those of [`vertex_curvature`] and [`super::fit`]; an interface that reaches the
+/// boundary, where vertex curvatures are not defined ([`crate::Error::InvalidInput`]).
+pub fn interface_curvature(
+    mesh: &Mesh2,
+    phi: &[f64],
+) -> Result<(Vec<crate::geom::DVec2>, Vec<f64>, usize)> {
+    let k = vertex_curvature(mesh, phi)?;
+    let fitted = super::fit(mesh, phi, &super::FitOptions::default())?;
+    let value = |v: usize| -> Result<f64> {
+        let at = |b: usize| {
+            k.kappa[b].ok_or_else(|| {
+                crate::Error::InvalidInput(format!(
+                    "interface curvature: the zero level reaches the boundary vertex {b}, where \
+                     001 (5.2) has no value"
+                ))
+            })
+        };
+        if v < fitted.n_base_vertices {
+            at(v)
+        } else {
+            let ([a, b], s) = fitted.cuts[v - fitted.n_base_vertices];
+            Ok((1.0 - s) * at(a as usize)? + s * at(b as usize)?)
+        }
+    };
+    let mut nodes: Vec<u32> = fitted.interface_edges().into_iter().flatten().collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    let points = nodes
+        .iter()
+        .map(|&v| fitted.mesh.points[v as usize])
+        .collect();
+    let values = nodes
+        .iter()
+        .map(|&v| value(v as usize))
+        .collect::<Result<Vec<f64>>>()?;
+    Ok((points, values, k.at_limit))
+}

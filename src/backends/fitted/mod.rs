@@ -11,7 +11,7 @@
 mod curvature;
 mod fit;
 
-pub use curvature::{vertex_curvature, VertexCurvature};
+pub use curvature::{interface_curvature, vertex_curvature, VertexCurvature};
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
