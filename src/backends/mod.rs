@@ -25,6 +25,7 @@
 
 pub mod adapted;
 pub mod dtgrid;
+pub mod fitted;
 mod implicit;
 mod report;
 

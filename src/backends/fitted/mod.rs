@@ -1,0 +1,14 @@
+//! The interface-fitted back end of 001: a base triangulation cut along the zero level of a P1
+//! level set so that the interface is a chain of mesh edges (001 §2), with the two sides labelled
+//! as `mmg2d -ls` labels them. P1 problems posed on the two sides (Stefan, solvation) are solved
+//! on [`FittedMesh::mesh`] and mapped back to the base mesh with
+//! [`FittedMesh::restrict_to_base`]; base fields reach the fitted mesh with
+//! [`FittedMesh::extend_from_base`].
+//!
+//! Files: `fit.rs` (cutting and labelling).
+
+mod fit;
+
+pub use fit::{
+    fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
+};
