@@ -8,7 +8,9 @@
 //! Files: `fit.rs` (cutting and labelling).
 
 mod fit;
+mod stefan;
 
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
+pub use stefan::{circle_deviation, stefan_step, StefanState, StefanStepReport};
