@@ -12,6 +12,7 @@ mod metric_args;
 mod progress;
 mod redistance;
 mod shape;
+mod stefan;
 mod triangulate;
 mod ugawg;
 mod user_files;
@@ -41,6 +42,8 @@ enum Command {
     Convergence(flows::ConvergenceArgs),
     /// The two-phase Couette Stokes flow (004 §5.1) on an adapted (or fitted) mesh.
     Couette(flows::CouetteArgs),
+    /// The Stefan problem on the interface-fitted mesh (001 §6): Frank's circle.
+    Stefan(stefan::StefanArgs),
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
@@ -106,6 +109,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Reinit(a)) => flows::reinit(a),
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
+        Some(Command::Stefan(a)) => stefan::run(a),
         Some(Command::Bench(b)) => bench::run(b),
         Some(Command::Measure(a)) => measure::run(a),
         Some(Command::Metric(a)) => metric::run(a),

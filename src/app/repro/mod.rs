@@ -8,4 +8,5 @@ pub mod couette_sweep;
 pub mod peers;
 pub mod reinit;
 pub mod speed;
+pub mod stefan;
 pub mod zalesak;
