@@ -79,7 +79,7 @@ fn interface_normals(fm: &FittedMesh, on: &[bool]) -> Vec<DVec2> {
 /// others keep their sign and get their new distance from the redistancing. The velocity given
 /// to a base vertex at distance `d` from the nearest interface vertex is the mean of `v_n` over the
 /// interface vertices within `d + smoothing`, weighted by their share of the interface length
-/// (`smoothing = 0`: the nearest vertex's value; about one mesh size averages out the
+/// (`smoothing = 0`: the nearest vertex's value; three mesh sizes average out the
 /// first-order noise of the one-sided gradients at the cut vertices).
 ///
 /// Errors: a non-positive or non-finite `dt` or `band`, fields of the wrong size or with
