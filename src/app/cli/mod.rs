@@ -18,6 +18,7 @@ mod metric_args;
 mod progress;
 mod redistance;
 mod shape;
+mod stefan;
 mod surface;
 mod triangulate;
 mod ugawg;
@@ -53,6 +54,8 @@ enum Command {
     /// Cuts a mesh along the zero level of a P1 level set (001 §2): interface edges labelled
     /// 10, inside 3, outside 2, as mmg2d -ls.
     Fit(fit::FitArgs),
+    /// The Stefan problem on the interface-fitted mesh (001 §6): Frank's circle.
+    Stefan(stefan::StefanArgs),
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
@@ -132,6 +135,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Convergence(a)) => flows::convergence(a),
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Fit(a)) => fit::run(a),
+        Some(Command::Stefan(a)) => stefan::run(a),
         Some(Command::Bench(b)) => bench::run(b),
         Some(Command::Measure(a)) => measure::run(a),
         Some(Command::Metric(a)) => metric::run(a),

@@ -11,6 +11,7 @@ pub mod dtgrid;
 pub mod peers;
 pub mod reinit;
 pub mod speed;
+pub mod stefan;
 pub mod surface_distance;
 pub mod surface_mcf;
 pub mod zalesak;

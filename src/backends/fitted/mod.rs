@@ -6,12 +6,14 @@
 //! [`FittedMesh::extend_from_base`].
 //!
 //! Files: `fit.rs` (cutting and labelling), `curvature.rs` (curvature by local averaging,
-//! 001 (5.2)).
+//! 001 (5.2)), `stefan.rs` (the Stefan loop of 001 §6 on the fitted mesh).
 
 mod curvature;
 mod fit;
+mod stefan;
 
 pub use curvature::{interface_curvature, vertex_curvature, VertexCurvature};
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
+pub use stefan::{circle_deviation, stefan_step, StefanState, StefanStepReport};
