@@ -49,14 +49,18 @@ pub fn run(a: StefanArgs) -> Result<()> {
     );
     for r in &rows {
         println!(
-            "{:>5} {:>9.3e} {:>6} {:>11.3e} {:>11.3e} {:>11.3e} {:>6.2} {:>8} {:>6.1} {:>8.2}",
+            "{:>5} {:>9.3e} {:>6} {:>11.3e} {:>11.3e} {:>11.3e} {:>6} {:>8} {:>6.1} {:>8.2}",
             r.n,
             r.dt,
             r.steps,
             r.radius_error,
             r.radius_error_max,
             r.area_radius_error,
-            r.order,
+            if r.order.is_finite() {
+                format!("{:.2}", r.order)
+            } else {
+                "–".to_string()
+            },
             r.fitted_vertices,
             r.cg_iterations,
             r.seconds
