@@ -7,9 +7,9 @@
 use super::run::AdvectReport;
 use crate::app::plot::{mesh_rgb, MeshPlot, RGBColor, RgbImage};
 use anisomesh::advect::{RunResult, Snapshot};
-use anisomesh::error::{Error, Result};
+use anisomesh::error::Result;
 use anisomesh::geom::DVec2;
-use anisomesh::io::{self, atomic_write, FieldRef, Sol};
+use anisomesh::io::{self, FieldRef, Sol};
 use anisomesh::levelset::interface::extract_zero_level;
 use std::path::Path;
 
@@ -18,27 +18,12 @@ const RED: RGBColor = RGBColor(214, 39, 40);
 
 /// Writes the report, the time series, the final mesh and level set and the figures into `dir`.
 pub fn write_all(dir: &Path, report: &AdvectReport, r: &RunResult) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let json = serde_json::to_vec_pretty(report)
-        .map_err(|e| Error::InvalidInput(format!("advect report serialisation: {e}")))?;
-    atomic_write(&dir.join("advect.json"), |w| w.write_all(&json))?;
-    let mut csv = String::from(
-        "period,time,area,perimeter,vertices,fixed_point_iterations,l1_change,seconds\n",
-    );
-    for s in &report.series {
-        csv.push_str(&format!(
-            "{},{:.12},{:.12},{:.12},{},{},{:.3e},{:.3}\n",
-            s.period,
-            s.time,
-            s.area,
-            s.perimeter,
-            s.vertices,
-            s.fixed_point_iterations,
-            s.l1_change,
-            s.seconds
-        ));
-    }
-    atomic_write(&dir.join("advect.csv"), |w| w.write_all(csv.as_bytes()))?;
+    crate::app::repro::zalesak::output::write_report_and_series(
+        dir,
+        "advect",
+        report,
+        &report.series,
+    )?;
     let (mesh, u) = (&r.last.mesh, &r.last.u);
     io::write_mesh(&dir.join("advect_final.mesh"), mesh)?;
     io::write_sol(&dir.join("advect_final.sol"), &Sol::scalar(u.clone()))?;

@@ -108,20 +108,8 @@ impl Default for ZalesakOptions {
     }
 }
 
-/// One row of the time series (after each period).
-#[derive(Debug, Clone, Serialize)]
-pub struct ZalesakSample {
-    pub period: usize,
-    pub time: f64,
-    pub area: f64,
-    pub perimeter: f64,
-    pub vertices: usize,
-    pub fixed_point_iterations: usize,
-    /// Mean L1 change of `u^{n+1}` at the last fixed-point iteration (0 on a fixed mesh).
-    pub l1_change: f64,
-    /// Cumulative wall-clock seconds at the end of the period.
-    pub seconds: f64,
-}
+/// One row of the time series (after each period): the statistics `advect::run` reports.
+pub type ZalesakSample = anisomesh::advect::StepStats;
 
 /// A mesh and the level set on it at one time (kept for the figures, not serialised).
 #[derive(Debug, Clone)]
