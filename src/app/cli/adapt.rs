@@ -50,8 +50,9 @@ pub struct AdaptArgs {
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
     /// Also cut the adapted mesh along the shape's zero level (interface edges labelled 10,
-    /// inside 3, outside 2) and write it beside the adapted mesh as `<name>_fitted.mesh`.
-    #[arg(long, conflicts_with = "input")]
+    /// inside 3, outside 2) and write it beside the adapted mesh as `<name>_fitted.mesh`; with
+    /// --input/--sol, the zero level of the input's P1 level set.
+    #[arg(long)]
     fit: bool,
     /// Dimension: 2 (triangles) or 3 (tetrahedra in [-1, 1]^3 around --shape star|sphere|torus
     /// or an --expr in x, y, z).
@@ -206,7 +207,9 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         println!("wrote {}", f.display());
     }
     println!("wrote {}", opts.out_dir.join("report.json").display());
-    if a.fit {
+    if let (true, Some(input), Some(sol)) = (a.fit, &a.input, &a.sol) {
+        super::fit::fit_adapted_input(&opts.out_dir, &opts.name, input, sol)?;
+    } else if a.fit {
         super::fit::fit_adapted(
             &opts.out_dir,
             &opts.name,

@@ -66,8 +66,8 @@ pub fn run(a: CurvatureArgs) -> Result<()> {
         a.expr
     );
     println!(
-        "{:>6} {:>10} {:>8} {:>14} {:>8}",
-        "n", "h", "nodes", "max rel error", "order"
+        "{:>6} {:>10} {:>8} {:>14} {:>8} {:>9}",
+        "n", "h", "nodes", "max rel error", "order", "at bound"
     );
     let mut rows: Vec<Row> = Vec::new();
     for &n in &ns {
@@ -93,7 +93,7 @@ pub fn run(a: CurvatureArgs) -> Result<()> {
             .map(|r| format!("{:.2}", (r.max_rel_error / err).ln() / (r.h / h).ln()))
             .unwrap_or_default();
         println!(
-            "{n:>6} {h:>10.3e} {:>8} {err:>14.3e} {order:>8}",
+            "{n:>6} {h:>10.3e} {:>8} {err:>14.3e} {order:>8} {at_limit:>9}",
             points.len()
         );
         rows.push(Row {

@@ -1,9 +1,13 @@
 //! `anisomesh fit`: cut a mesh along the zero level (or another level) of a P1 level set so the
-//! interface is made of mesh edges, labelled as `mmg2d -ls` labels it.
+//! interface is made of mesh edges, labelled as `mmg2d -ls` labels it; `--compare-mmg` runs the
+//! same files through `mmg2d_O3 -ls -noinsert -noswap -nomove` beside it.
 
+use crate::app::repro::peers_fit;
+use anisomesh::advect::characteristics::locate_all;
 use anisomesh::backends::fitted::{fit, FitOptions, FittedMesh};
 use anisomesh::io::{self, SolField};
-use anisomesh::levelset::nodal_distance;
+use anisomesh::levelset::{enclosed_area, nodal_distance};
+use anisomesh::mesh::{check_p1_field, Location};
 use anisomesh::{Error, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -13,20 +17,34 @@ use std::time::Instant;
 #[derive(Debug, Args)]
 pub struct FitArgs {
     /// The base mesh (.mesh, .msh).
-    #[arg(long)]
-    input: PathBuf,
+    #[arg(long, required_unless_present = "compare_mmg", requires = "sol")]
+    input: Option<PathBuf>,
     /// The level set at its vertices (.sol, one scalar per vertex).
-    #[arg(long)]
-    sol: PathBuf,
+    #[arg(long, requires = "input")]
+    sol: Option<PathBuf>,
     /// The level to fit.
     #[arg(long, default_value_t = 0.0)]
     iso: f64,
     /// The fitted mesh (.mesh with labels 3 inside, 2 outside, interface edges 10; .msh; .vtu).
-    #[arg(short, long)]
-    output: PathBuf,
+    #[arg(short, long, required_unless_present = "compare_mmg")]
+    output: Option<PathBuf>,
     /// A JSON report (vertices, triangles, area_inside, interface_length, seconds).
     #[arg(long)]
     report: Option<PathBuf>,
+    /// Run the comparison with mmg2d on the built-in cases (Zalesak on a grid and on an adapted
+    /// mesh, zeros at vertices, boundary contacts, several components, a speed case); files
+    /// and fit_compare.json go to --dir.
+    #[arg(long, conflicts_with_all = ["input", "output"])]
+    compare_mmg: bool,
+    /// Cells per side of the speed case of --compare-mmg.
+    #[arg(long, default_value_t = 200)]
+    speed_n: usize,
+    /// Runs of each command in --compare-mmg (the best wall time is kept).
+    #[arg(long, default_value_t = 3)]
+    repeats: usize,
+    /// Directory of --compare-mmg.
+    #[arg(long, default_value = "out/fit_compare")]
+    dir: PathBuf,
 }
 
 /// The numbers `anisomesh fit` prints and reports.
@@ -51,16 +69,7 @@ pub struct FitReport {
 /// Reads a mesh and a scalar level set, fits the level `iso`, checks the result.
 pub fn fit_files(input: &Path, sol: &Path, iso: f64) -> Result<FittedMesh> {
     let mesh = io::read_mesh(input)?;
-    let sol_data = io::read_sol_for(sol, mesh.n_points())?;
-    let u = match sol_data.fields.into_iter().next() {
-        Some(SolField::Scalar(u)) => u,
-        _ => {
-            return Err(Error::InvalidInput(format!(
-                "{}: expected a scalar level set (Medit type 1) as the first field",
-                sol.display()
-            )))
-        }
-    };
+    let u = read_scalar(sol, mesh.n_points())?;
     let f = fit(
         &mesh,
         &u,
@@ -75,6 +84,23 @@ pub fn fit_files(input: &Path, sol: &Path, iso: f64) -> Result<FittedMesh> {
     })?;
     f.mesh.check()?;
     Ok(f)
+}
+
+/// The scalar level set of a `.sol` with `n` vertices; NaN and infinite values are refused
+/// with the vertex named.
+fn read_scalar(sol: &Path, n: usize) -> Result<Vec<f64>> {
+    let sol_data = io::read_sol_for(sol, n)?;
+    let u = match sol_data.fields.into_iter().next() {
+        Some(SolField::Scalar(u)) => u,
+        _ => {
+            return Err(Error::InvalidInput(format!(
+                "{}: expected a scalar level set (Medit type 1) as the first field",
+                sol.display()
+            )))
+        }
+    };
+    check_p1_field(n, &u, &sol.display().to_string())?;
+    Ok(u)
 }
 
 /// The report of a fitted mesh, with the command's wall time.
@@ -132,12 +158,119 @@ pub fn fit_adapted(dir: &Path, name: &str, shape: Option<&str>, expr: Option<&st
     print_report(&report_of(&f, start.elapsed().as_secs_f64()), None)
 }
 
+/// `anisomesh adapt --input M --sol U --fit`: reads `<dir>/<name>.mesh` (the mesh adapted to
+/// the zero level of `U`), takes the input's P1 level set at its vertices (located in the input
+/// mesh), fits its zero level and writes `<dir>/<name>_fitted.mesh`; the inside area is printed
+/// beside the input's.
+pub fn fit_adapted_input(dir: &Path, name: &str, input: &Path, sol: &Path) -> Result<()> {
+    let start = Instant::now();
+    let mesh_in = io::read_mesh(input)?;
+    let u_in = read_scalar(sol, mesh_in.n_points())?;
+    let mesh = io::read_mesh(&dir.join(format!("{name}.mesh")))?;
+    let locs = locate_all(&mesh_in, &mesh.points, None)?;
+    let u: Vec<f64> = locs
+        .iter()
+        .zip(&mesh.points)
+        .map(|(l, p)| match *l {
+            Location::Inside { tri, bary } => {
+                let t = mesh_in.tris[tri as usize];
+                Ok((0..3).map(|k| bary[k] * u_in[t[k] as usize]).sum())
+            }
+            Location::Outside { .. } => Err(Error::InvalidInput(format!(
+                "adapt --fit: the adapted vertex {p} lies outside the input mesh {}",
+                input.display()
+            ))),
+        })
+        .collect::<Result<_>>()?;
+    let f = fit(&mesh, &u, &FitOptions::default())?;
+    f.mesh.check()?;
+    let out = dir.join(format!("{name}_fitted.mesh"));
+    io::write_mesh(&out, &f.mesh)?;
+    println!("wrote {}", out.display());
+    let area_in = enclosed_area(&mesh_in, &u_in)?;
+    println!(
+        "input inside area {area_in:.12}, fitted {:.12} (relative difference {:.2e})",
+        f.area_inside(),
+        (f.area_inside() - area_in).abs() / area_in
+    );
+    print_report(&report_of(&f, start.elapsed().as_secs_f64()), None)
+}
+
 /// Runs `anisomesh fit`.
 pub fn run(a: FitArgs) -> Result<()> {
+    if a.compare_mmg {
+        return compare_mmg(&a.dir, a.speed_n, a.repeats);
+    }
+    let (Some(input), Some(sol), Some(output)) = (&a.input, &a.sol, &a.output) else {
+        return Err(Error::InvalidInput(
+            "fit: --input, --sol and -o are required".into(),
+        ));
+    };
     let start = Instant::now();
-    let f = fit_files(&a.input, &a.sol, a.iso)?;
-    io::write_mesh(&a.output, &f.mesh)?;
+    let f = fit_files(input, sol, a.iso)?;
+    io::write_mesh(output, &f.mesh)?;
     let r = report_of(&f, start.elapsed().as_secs_f64());
-    println!("wrote {}", a.output.display());
+    println!("wrote {}", output.display());
     print_report(&r, a.report.as_deref())
+}
+
+/// `anisomesh fit --compare-mmg`: the comparison table and `fit_compare.json`.
+fn compare_mmg(dir: &Path, speed_n: usize, repeats: usize) -> Result<()> {
+    if !(2..=4096).contains(&speed_n) || repeats == 0 {
+        return Err(Error::InvalidInput(format!(
+            "--speed-n must be 2..=4096 and --repeats at least 1 (got {speed_n}, {repeats})"
+        )));
+    }
+    let c = peers_fit::compare(dir, speed_n, repeats)?;
+    match &c.mmg2d {
+        Some(p) => println!("mmg2d: {p} -ls -noinsert -noswap -nomove"),
+        None => println!("mmg2d_O3 not on PATH: our rows only"),
+    }
+    println!(
+        "{:<16} {:<10} {:>8} {:>9} {:>7} {:>16} {:>9} {:>5} {:>8} {:>8} {:>8}",
+        "case",
+        "tool",
+        "vertices",
+        "triangles",
+        "Γ edges",
+        "area inside",
+        "area err",
+        "check",
+        "wall s",
+        "cpu s",
+        "own s"
+    );
+    for r in &c.rows {
+        println!(
+            "{:<16} {:<10} {:>8} {:>9} {:>7} {:>16.12} {:>9.1e} {:>5} {:>8.3} {:>8.3} {:>8}",
+            r.case,
+            r.tool,
+            r.vertices,
+            r.triangles,
+            r.interface_edges,
+            r.area_inside,
+            r.area_rel_error,
+            if r.check == "ok" { "ok" } else { "FAIL" },
+            r.wall_seconds,
+            r.cpu_seconds,
+            r.own_seconds.map(|s| format!("{s:.3}")).unwrap_or_default()
+        );
+        if r.check != "ok" {
+            println!("  {} on {}: check() {}", r.tool, r.case, r.check);
+        }
+    }
+    if let (Some(w), Some(cpu)) = (c.speed_wall_ratio, c.speed_cpu_ratio) {
+        println!(
+            "speed case ({} vertices): mmg2d / anisomesh = {w:.2}x wall, {cpu:.2}x CPU \
+             (whole commands, best of {repeats})",
+            (speed_n + 1) * (speed_n + 1)
+        );
+    }
+    let path = dir.join("fit_compare.json");
+    io::atomic_write(&path, |w| {
+        serde_json::to_writer_pretty(&mut *w, &c).map_err(std::io::Error::from)?;
+        writeln!(w)
+    })?;
+    println!("wrote {}", path.display());
+    Ok(())
 }

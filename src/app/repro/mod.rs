@@ -9,6 +9,7 @@ pub mod couette_sweep;
 pub mod crosscheck;
 pub mod dtgrid;
 pub mod peers;
+pub mod peers_fit;
 pub mod reinit;
 pub mod speed;
 pub mod stefan;

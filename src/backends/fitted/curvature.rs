@@ -84,7 +84,10 @@ pub fn vertex_curvature(mesh: &Mesh2, phi: &[f64]) -> Result<VertexCurvature> {
 /// The curvature on the zero level of `phi` as 001 §5 measures it: the vertex curvatures of
 /// [`vertex_curvature`] interpolated linearly onto the nodes of the fitted interface (the
 /// points where the zero level crosses the edges of `mesh`, and the vertices it passes
-/// through). Returns the nodes, their curvatures and the number of vertices at the bound.
+/// through). Returns the nodes, their curvatures and the number of base vertices used there
+/// (the ends of the cut edges and the vertices on the level) whose `|κ_h|` reaches the bound
+/// `∫_ω |∇N_v| / ∫_ω N_v` (001 §5: `3√2/h` on the uniform grid): the curvature of the zero
+/// level is then not resolved by the grid and the samples are capped.
 ///
 /// Errors: those of [`vertex_curvature`] and [`super::fit`]; an interface that reaches the
 /// boundary, where vertex curvatures are not defined ([`crate::Error::InvalidInput`]).
@@ -121,5 +124,24 @@ pub fn interface_curvature(
         .iter()
         .map(|&v| value(v as usize))
         .collect::<Result<Vec<f64>>>()?;
-    Ok((points, values, k.at_limit))
+    let mut used: Vec<usize> = nodes
+        .iter()
+        .flat_map(|&v| {
+            let v = v as usize;
+            if v < fitted.n_base_vertices {
+                [v, v]
+            } else {
+                fitted.cuts[v - fitted.n_base_vertices]
+                    .0
+                    .map(|x| x as usize)
+            }
+        })
+        .collect();
+    used.sort_unstable();
+    used.dedup();
+    let at_limit = used
+        .iter()
+        .filter(|&&v| k.kappa[v].is_some_and(|kv| kv.abs() >= k.limit[v] * (1.0 - 1e-9)))
+        .count();
+    Ok((points, values, at_limit))
 }

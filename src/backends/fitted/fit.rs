@@ -186,16 +186,26 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
     let has_neg = v.iter().any(|&x| x < 0.0);
     let has_pos = v.iter().any(|&x| x > 0.0);
     if !(has_neg && has_pos) {
+        let side = if has_neg {
+            "below it"
+        } else if has_pos {
+            "above it"
+        } else {
+            "on it"
+        };
+        let zeros: Vec<usize> = (0..v.len()).filter(|&i| v[i] == 0.0).collect();
+        let touch = match (zeros.first(), has_neg || has_pos) {
+            (Some(&z), true) => format!(
+                " or on it at {} vertices only (e.g. vertex {z} at {}), which bound no region",
+                zeros.len(),
+                base.points[z]
+            ),
+            _ => String::new(),
+        };
         return Err(Error::EmptyLevelSet(format!(
-            "the level {} does not cross the mesh: every vertex value is {} (mesh unchanged)",
-            opts.iso,
-            if has_neg {
-                "below it"
-            } else if has_pos {
-                "above it"
-            } else {
-                "on it"
-            }
+            "the level {} does not cross the mesh: every vertex value is {side}{touch} \
+             (mesh unchanged)",
+            opts.iso
         )));
     }
     let nb = base.n_points();

@@ -6,14 +6,20 @@
 //! [`FittedMesh::extend_from_base`].
 //!
 //! Files: `fit.rs` (cutting and labelling), `curvature.rs` (curvature by local averaging,
-//! 001 (5.2)), `stefan.rs` (the Stefan loop of 001 §6 on the fitted mesh).
+//! 001 (5.2)), `stefan.rs` (the Stefan loop of 001 §6 on the fitted mesh), `reinit.rs` (the
+//! Poisson reinitialisation of 001 §4), `backend.rs` (the back-end contract on a uniform base
+//! grid).
 
+mod backend;
 mod curvature;
 mod fit;
+mod reinit;
 mod stefan;
 
+pub use backend::{FittedBackend, FittedOptions, FittedRedistancing};
 pub use curvature::{interface_curvature, vertex_curvature, VertexCurvature};
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
+pub use reinit::{poisson_reinit, PoissonOutput, PoissonReinit};
 pub use stefan::{circle_deviation, stefan_step, StefanState, StefanStepReport};
