@@ -4,14 +4,18 @@
 //! ([`super::fit`]).
 //!
 //! - **Build**: the base grid with cells of side at most the resolution `h`; `u` the implicit
-//!   function at the vertices, redistanced geometrically (the exact distance to the P1 zero
-//!   level, 004 §2.2).
-//! - **Mean curvature** (`u_t = |∇u| div(∇u/|∇u|)`, 000 eq. (2.4)): for a signed distance
-//!   `|∇u| = 1` and the equation is the heat equation near the zero level; one implicit step
-//!   `(M_L + dt K) u^{n+1} = M_L u^n` (lumped mass, so on the uniform grid `M_L⁻¹K` is the
-//!   five-point Laplacian, a consistent one), then the redistancing of the options, so that the
-//!   next step again sees a distance. Measured (tests/backends_fitted.rs): radius error of a
-//!   shrinking circle of order 1 in `h` with `dt ∝ h`.
+//!   function at the vertices, redistanced ([`FittedRedistancing`], geometric by default: the
+//!   exact distance to the P1 zero level, 004 §2.2) only when it is not close to a distance
+//!   ([`FittedOptions::distance_tol`]). A distance is kept as it is: the distance to the P1
+//!   polyline has the curvature of its level sets at the polyline's corners, and 001 (5.2) then
+//!   errs by about 10% on a circle at every resolution (docs/fitted.md).
+//! - **Mean curvature** (`u_t = |∇u| κ`, `κ = div(∇u/|∇u|)`, 000 eq. (2.4)): the speed
+//!   `f = |∇u| κ_h` at the vertices, κ_h by 001 (5.2) (the curvature of the level set through
+//!   each vertex, so no extension is needed) and `|∇u|` of the area-weighted mean gradient;
+//!   the step `(M_L + dt K)(u^{n+1} − u^n) = dt M_L f` keeps the stiffness as an implicit
+//!   smoother of the increment (as the adapted back end does), then redistances only when `u`
+//!   has drifted from a distance. Measured (tests/backends_fitted.rs): radius error of a
+//!   shrinking circle of order 2 with `dt ∝ h²`, 1 with `dt ∝ h`.
 //! - **Advection**: characteristics, `u^{n+1}(x_i) = u^n(X(x_i))` at every base vertex, with the
 //!   midpoint (RK2) foot and P1 interpolation on the base grid (feet outside the box are moved to
 //!   the nearest point of the box: inflow takes the boundary value).
@@ -37,8 +41,9 @@ use crate::mesh::{GridPattern, Mesh2};
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// How the fitted back end redistances (after building, after every mean curvature step, and
-/// in [`LevelSetBackend::redistance`]).
+/// How the fitted back end redistances: in [`LevelSetBackend::redistance`], and after building
+/// and after a mean curvature step when `u` has drifted from a distance
+/// ([`FittedOptions::distance_tol`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum FittedRedistancing {
     /// The exact distance to the P1 zero level (004 §2.2): `|∇u| = 1` near the zero level.
