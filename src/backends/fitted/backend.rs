@@ -20,7 +20,7 @@
 //!   midpoint (RK2) foot and P1 interpolation on the base grid (feet outside the box are moved to
 //!   the nearest point of the box: inflow takes the boundary value).
 //! - **Redistancing**: geometric (default) or the Poisson reinitialisation of 001 §4
-//!   ([`super::reinit`]), see [`FittedRedistancing`].
+//!   ([`super::poisson_reinit`]), see [`FittedRedistancing`].
 //! - **Measures**: the inside area (triangles labelled 3) and the interface length (edges
 //!   labelled 10) of the fitted mesh, which are those of the P1 zero level of `u` to round-off.
 //! - **Curvature**: 001 (5.2) at the base vertices, interpolated onto the interface nodes of
@@ -50,11 +50,11 @@ pub enum FittedRedistancing {
     #[default]
     Geometric,
     /// PPR gradient recovery and oblique projection onto the zero level, fast marching beyond
-    /// (003 §6): a smoother distance than the geometric one.
+    /// (003 §6).
     Ppr,
     /// The Poisson reinitialisation of 001 §4 with the gradient-jump rows, solved on the fitted
-    /// mesh and restricted to the base grid ([`super::reinit`]). Its `u` is smooth across the
-    /// zero level with `|∇u|` bounded away from 0 and ∞, but not a distance.
+    /// mesh and restricted to the base grid ([`super::poisson_reinit`]). Its `u` is smooth
+    /// across the zero level with `|∇u|` bounded away from 0 and ∞, but not a distance.
     Poisson(PoissonReinit),
 }
 
