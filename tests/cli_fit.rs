@@ -184,3 +184,39 @@ fn adapt_to_a_discrete_level_set_then_fit_it() {
     assert!(stdout.contains("input inside area"));
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn compare_with_mmg2d_checks_every_output() {
+    // The comparison at a small speed case: every output (ours, and mmg2d's when installed)
+    // passes check(), and ours has the P1 area of every input to 1e-12.
+    let d = tmp("compare");
+    let o = anisomesh(&[
+        "fit",
+        "--compare-mmg",
+        "--speed-n",
+        "40",
+        "--repeats",
+        "1",
+        "--dir",
+        s(&d),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("fit_compare.json")).unwrap())
+            .unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    let ours: Vec<_> = rows.iter().filter(|r| r["tool"] == "anisomesh").collect();
+    assert_eq!(ours.len(), 6);
+    for r in rows {
+        assert_eq!(r["check"], "ok", "{r}");
+    }
+    for r in ours {
+        assert!(r["area_rel_error"].as_f64().unwrap() <= 1e-12, "{r}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
