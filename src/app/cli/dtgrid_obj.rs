@@ -23,13 +23,14 @@ pub struct TextureArgs {
     #[arg(long, default_value_t = 1)]
     band: usize,
     /// Time steps.
-    #[arg(long, default_value_t = 3000)]
+    #[arg(long, default_value_t = 300)]
     steps: usize,
     /// Time step (the reaction is explicit: c_s·τ well below 1).
     #[arg(long, default_value_t = 1.0)]
     tau: f64,
-    /// natural or transparent (000 §4.1: transparent).
-    #[arg(long, default_value = "transparent")]
+    /// natural or transparent (000 §4.1 uses transparent; with the explicit boundary flux it
+    /// diverges in long runs, see docs/dtgrid_surfaces.md).
+    #[arg(long, default_value = "natural")]
     bc: String,
     /// Diffusion coefficient of a (default: 000 Fig. 4.1's 2.5e-7 scaled by (h/0.00102)²).
     #[arg(long)]
@@ -55,7 +56,7 @@ pub struct ObjMcfArgs {
     #[arg(long, default_value = "meshes/star.obj")]
     obj: PathBuf,
     /// Grid nodes per side.
-    #[arg(long, default_value_t = 97)]
+    #[arg(long, default_value_t = 65)]
     n: usize,
     /// Band half-width j in cells.
     #[arg(long, default_value_t = 1)]
@@ -67,7 +68,7 @@ pub struct ObjMcfArgs {
     #[arg(long)]
     tau: Option<f64>,
     /// Final time (in the placed coordinates).
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = 0.005)]
     t_end: f64,
     /// Frames drawn (first and last included).
     #[arg(long, default_value_t = 5)]
