@@ -45,11 +45,16 @@ fn linear_reaction_reproduces_the_exponential_of_a_spherical_harmonic() {
         }
         let z = zero_level(&lat, &s.nb.band, &s.phi);
         let amp = ((lambda - 6.0 / (r * r)) * t_end).exp();
-        let err = surface_integral(&lat, &s.nb.band, &z, &u, |x, v| (v - amp * y2(x)).powi(2))
-            .sqrt();
+        let err =
+            surface_integral(&lat, &s.nb.band, &z, &u, |x, v| (v - amp * y2(x)).powi(2)).sqrt();
         let norm = surface_integral(&lat, &s.nb.band, &z, &u, |x, _| (amp * y2(x)).powi(2)).sqrt();
         // Without the reaction the amplitude would be off by e^{-λt} − 1 ≈ 18 %.
-        assert!(err / norm < 0.03, "{}: relative L2 error {}", bc.name(), err / norm);
+        assert!(
+            err / norm < 0.03,
+            "{}: relative L2 error {}",
+            bc.name(),
+            err / norm
+        );
     }
 }
 
@@ -77,11 +82,7 @@ fn pure_diffusion_with_natural_conditions_conserves_the_total() {
 }
 
 fn star_shape(level: u32) -> TriangulatedShape {
-    let s = radial_surface(
-        DVec3::ZERO,
-        |d| StarSurface::PAPER.radius_towards(d),
-        level,
-    );
+    let s = radial_surface(DVec3::ZERO, |d| StarSurface::PAPER.radius_towards(d), level);
     TriangulatedShape::new(s.points, s.triangles).unwrap()
 }
 
@@ -183,7 +184,10 @@ fn bad_obj_input_gives_one_line_errors_or_a_repair() {
     match read_shape(&hole) {
         Err(e @ Error::InvalidInput(_)) => {
             let m = e.to_string();
-            assert!(m.contains("hole") && m.contains("hole.obj") && !m.contains('\n'), "{m}");
+            assert!(
+                m.contains("hole") && m.contains("hole.obj") && !m.contains('\n'),
+                "{m}"
+            );
         }
         other => panic!("expected a typed error, got {other:?}"),
     }
@@ -197,7 +201,10 @@ fn bad_obj_input_gives_one_line_errors_or_a_repair() {
     let e = read_shape(std::path::Path::new("/nonexistent/star.obj")).unwrap_err();
     assert!(matches!(e, Error::Io { .. }));
     let m = e.to_string();
-    assert!(m.contains("/nonexistent/star.obj") && !m.contains('\n'), "{m}");
+    assert!(
+        m.contains("/nonexistent/star.obj") && !m.contains('\n'),
+        "{m}"
+    );
     // A grid too coarse for the band: a typed error, no panic.
     let lat = Lattice::unit(5).unwrap();
     assert!(Placement::fit(s.surface(), &lat, 2).is_err());

@@ -112,10 +112,21 @@ pub fn texture(a: TextureArgs) -> Result<()> {
     println!(
         "{} steps of τ = {} ({} conditions, {} CG iterations): a in [{:.4}, {:.4}], mean {:.4}, \
          variance {:.4e}; band {:.2} s, steps {:.2} s",
-        r.steps, r.tau, r.bc, r.cg_iterations, r.a.min, r.a.max, r.a.mean, r.a.variance,
-        r.seconds_band, r.seconds_steps
+        r.steps,
+        r.tau,
+        r.bc,
+        r.cg_iterations,
+        r.a.min,
+        r.a.max,
+        r.a.mean,
+        r.a.variance,
+        r.seconds_band,
+        r.seconds_steps
     );
-    println!("wrote {}/dtgrid_texture.{{json,vtu,png}}", a.output.display());
+    println!(
+        "wrote {}/dtgrid_texture.{{json,vtu,png}}",
+        a.output.display()
+    );
     Ok(())
 }
 
@@ -145,11 +156,7 @@ pub fn obj_mcf(a: ObjMcfArgs) -> Result<()> {
         r.n, r.band, r.bc, r.tau, r.steps, r.mean_solves, r.seconds
     );
     println!("{:>9} {:>10} {:>10} {:>8}", "t", "volume", "area", "nodes");
-    for s in r
-        .samples
-        .iter()
-        .filter(|s| r.frame_times.contains(&s.t))
-    {
+    for s in r.samples.iter().filter(|s| r.frame_times.contains(&s.t)) {
         println!(
             "{:>9.5} {:>10.6} {:>10.6} {:>8}",
             s.t, s.volume, s.area, s.nodes

@@ -377,8 +377,7 @@ pub fn obj_mcf(o: &ObjMcfOptions) -> Result<ObjMcfReport> {
 }
 
 fn write_json(path: &Path, v: &impl Serialize) -> Result<()> {
-    let json =
-        serde_json::to_string_pretty(v).map_err(|e| Error::InvalidInput(e.to_string()))?;
+    let json = serde_json::to_string_pretty(v).map_err(|e| Error::InvalidInput(e.to_string()))?;
     anisomesh::io::atomic_write(path, |w| w.write_all(json.as_bytes()))
 }
 

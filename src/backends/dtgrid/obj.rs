@@ -133,7 +133,12 @@ pub fn welded_zero_level<B: Band<Coord = C3>>(
 
 /// The Q1 interpolant of the band field `u` at `p`, from a grid cell containing `p` whose
 /// corners are all band nodes; `None` when there is none.
-pub fn interpolate<B: Band<Coord = C3>>(lat: &Lattice, band: &B, u: &[f64], p: DVec3) -> Option<f64> {
+pub fn interpolate<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    band: &B,
+    u: &[f64],
+    p: DVec3,
+) -> Option<f64> {
     let xi = (p - DVec3::splat(lat.lo)) / lat.h;
     let base = [xi.x, xi.y, xi.z].map(|v| v.floor() as i32);
     // A point on a cell face belongs to the cells on both sides: try the lower ones too.
@@ -156,11 +161,7 @@ pub fn interpolate<B: Band<Coord = C3>>(lat: &Lattice, band: &B, u: &[f64], p: D
             .map(|q| band.index(c.corner(q)).map(|i| u[i]))
             .collect();
         if let Some(vals) = vals {
-            let loc = [
-                xi.x - c[0] as f64,
-                xi.y - c[1] as f64,
-                xi.z - c[2] as f64,
-            ];
+            let loc = [xi.x - c[0] as f64, xi.y - c[1] as f64, xi.z - c[2] as f64];
             return Some((0..8).map(|q| vals[q] * shape(3, q, &loc)).sum());
         }
     }

@@ -222,7 +222,9 @@ impl Turing {
 pub fn unit_hash(seed: u64, c: C3) -> f64 {
     let mut x = seed ^ 0x9e37_79b9_7f4a_7c15;
     for v in c {
-        x = x.wrapping_add(v as u32 as u64).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        x = x
+            .wrapping_add(v as u32 as u64)
+            .wrapping_mul(0xbf58_476d_1ce4_e5b9);
         x ^= x >> 31;
         x = x.wrapping_mul(0x94d0_49bb_1331_11eb);
         x ^= x >> 29;
@@ -306,8 +308,12 @@ impl TuringState {
             .zip(&self.beta)
             .map(|((a, b), beta)| p.cs * (a * b - b - beta))
             .collect();
-        let mut it = self.op.step(&self.sys_a, p.ca, self.tau, &mut self.a, &fa)?;
-        it += self.op.step(&self.sys_b, p.cb, self.tau, &mut self.b, &fb)?;
+        let mut it = self
+            .op
+            .step(&self.sys_a, p.ca, self.tau, &mut self.a, &fa)?;
+        it += self
+            .op
+            .step(&self.sys_b, p.cb, self.tau, &mut self.b, &fb)?;
         // The reaction keeps b ≥ 0 in the continuous problem; clamp the explicit step's
         // undershoot so the product ab stays meaningful.
         self.b.iter_mut().for_each(|b| *b = b.max(0.0));
