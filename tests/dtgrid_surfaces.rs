@@ -99,9 +99,11 @@ fn turing_patterns_form_on_the_star() {
     let s: McfState<B> = band_of_shape(lat, 1, &shape).unwrap();
     let p = Turing::paper_at(lat.h);
     let mut st = TuringState::new(lat, &s.nb, &s.phi, p, 1.0, Bc::Natural).unwrap();
-    st.step().unwrap();
+    for _ in 0..10 {
+        st.step().unwrap();
+    }
     let v1 = st.op.variance(&st.a);
-    for _ in 0..199 {
+    for _ in 0..190 {
         st.step().unwrap();
     }
     let v = st.op.variance(&st.a);

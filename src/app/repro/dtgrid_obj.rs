@@ -36,6 +36,10 @@ pub struct InputReport {
     pub centre: [f64; 3],
     /// The placement's scale.
     pub scale: f64,
+    /// The enclosed volume of the placed triangulation (compare with the zero level's).
+    pub volume: f64,
+    /// The area of the placed triangulation.
+    pub area: f64,
 }
 
 fn load(obj: &Path, lat: &Lattice, j: usize) -> Result<(TriangulatedShape, InputReport)> {
@@ -53,6 +57,8 @@ fn load(obj: &Path, lat: &Lattice, j: usize) -> Result<(TriangulatedShape, Input
         components: raw.components(),
         centre: [c.x, c.y, c.z],
         scale: place.scale,
+        volume: shape.volume(),
+        area: shape.area(),
     };
     Ok((shape, rep))
 }
