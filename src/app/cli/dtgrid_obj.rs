@@ -151,6 +151,10 @@ pub fn obj_mcf(a: ObjMcfArgs) -> Result<()> {
         r.input.file, r.input.triangles, r.input.flipped_triangles, c[0], c[1], c[2], r.input.scale
     );
     println!(
+        "placed triangulation: volume {:.6}, area {:.6}",
+        r.input.volume, r.input.area
+    );
+    println!(
         "mean curvature motion, {}³ grid, j = {}, {} conditions, τ = {:.3e}, {} steps, {:.2} \
          solves per step, {:.1} s",
         r.n, r.band, r.bc, r.tau, r.steps, r.mean_solves, r.seconds
