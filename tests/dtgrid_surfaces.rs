@@ -51,7 +51,7 @@ fn linear_reaction_reproduces_the_exponential_of_a_spherical_harmonic() {
         // Without the reaction the amplitude would be off by e^{-λt} − 1 ≈ 18 %.
         eprintln!("{}: relative L2 error {:.3e}", bc.name(), err / norm);
         assert!(
-            err / norm < 0.03,
+            err / norm < 0.015,
             "{}: relative L2 error {}",
             bc.name(),
             err / norm
