@@ -17,6 +17,10 @@ pub enum DtGrid {
     Heat(HeatArgs),
     /// A sphere r = 0.25 shrinking by mean curvature (000 Table 2.2).
     Mcf(McfArgs),
+    /// A Turing reaction–diffusion texture on a triangulated surface (000 §4.1).
+    Texture(super::dtgrid_obj::TextureArgs),
+    /// Mean curvature motion of a triangulated surface, frames drawn (000 §2.4).
+    ObjMcf(super::dtgrid_obj::ObjMcfArgs),
 }
 
 /// Options of `dtgrid heat`.
@@ -80,6 +84,8 @@ pub struct McfArgs {
 /// Runs a `dtgrid` subcommand.
 pub fn run(cmd: DtGrid) -> Result<()> {
     match cmd {
+        DtGrid::Texture(a) => super::dtgrid_obj::texture(a),
+        DtGrid::ObjMcf(a) => super::dtgrid_obj::obj_mcf(a),
         DtGrid::Heat(a) => {
             let rows = match a.n {
                 Some(n) => vec![repro::heat_row(&HeatOptions {

@@ -8,6 +8,7 @@ pub mod couette;
 pub mod couette_sweep;
 pub mod crosscheck;
 pub mod dtgrid;
+pub mod dtgrid_obj;
 pub mod peers;
 pub mod peers_fit;
 pub mod reinit;

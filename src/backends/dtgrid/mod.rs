@@ -23,3 +23,5 @@ pub mod surface;
 pub use band::{Band, GridCoord};
 pub use grid::{DtCoord, DtGrid, Implicit};
 pub use sorted::SortedBand;
+pub mod obj;
+pub mod reaction;
