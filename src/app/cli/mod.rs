@@ -9,6 +9,7 @@ mod convert;
 mod crosscheck;
 mod curvature;
 mod dtgrid;
+mod dtgrid_shape;
 mod fit;
 mod flows;
 mod info;
