@@ -124,7 +124,7 @@ pub fn node_curvature<B: Band<Coord = C3>>(
     let hxz = (at(2, 1, 2) - at(2, 1, 0) - at(0, 1, 2) + at(0, 1, 0)) / (4.0 * h * h);
     let hyz = (at(1, 2, 2) - at(1, 2, 0) - at(1, 0, 2) + at(1, 0, 0)) / (4.0 * h * h);
     let g2 = gx * gx + gy * gy + gz * gz;
-    if !(g2 > 0.0) {
+    if g2.is_nan() || g2 <= 0.0 {
         return None;
     }
     let num = (hyy + hzz) * gx * gx + (hxx + hzz) * gy * gy + (hxx + hyy) * gz * gz
