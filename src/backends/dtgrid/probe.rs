@@ -179,3 +179,54 @@ pub fn curvature_at<B: Band<Coord = C3>>(
     }
     Some(k_sum)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backends::dtgrid::DtGrid;
+
+    /// The full grid `0..n` per axis as a band (lattice on `[−½, ½]³`).
+    fn full(n: usize) -> (Lattice, DtGrid<C3>, Vec<C3>) {
+        let lat = Lattice::unit(n).unwrap();
+        let m = n as i32;
+        let coords: Vec<C3> = (0..m * m * m)
+            .map(|k| [k / (m * m), (k / m) % m, k % m])
+            .collect();
+        (lat, DtGrid::from_sorted(coords.clone()).unwrap(), coords)
+    }
+
+    #[test]
+    fn interpolation_exactness_and_curvature_of_a_sphere() {
+        let (lat, band, coords) = full(17);
+        let quad = |p: DVec3| 0.3 + p.x - 2.0 * p.y * p.z + 1.5 * p.x * p.x - p.z * p.z;
+        let tril = |p: DVec3| 0.1 + p.x * p.y * p.z - 0.7 * p.y + p.x * p.z;
+        let q: Vec<f64> = coords.iter().map(|&c| quad(lat.pos(c))).collect();
+        let t: Vec<f64> = coords.iter().map(|&c| tril(lat.pos(c))).collect();
+        for i in 0..50 {
+            let s = i as f64;
+            let p = DVec3::new(
+                0.37 * (1.3 * s).sin(),
+                0.37 * (2.1 * s).cos(),
+                0.37 * (0.7 * s + 1.0).sin(),
+            );
+            // Catmull–Rom reproduces quadratics, Q1 reproduces trilinear functions.
+            assert!((sample_cubic(&lat, &band, &q, p).unwrap() - quad(p)).abs() < 1e-12);
+            assert!((sample(&lat, &band, &t, p).unwrap() - tril(p)).abs() < 1e-12);
+        }
+        assert_eq!(sample(&lat, &band, &t, DVec3::splat(0.6)), None);
+        // The curvature of the distance to a sphere r = 0.3 at nodes near it: 2/r within O(h²).
+        let r = 0.3;
+        let d: Vec<f64> = coords.iter().map(|&c| lat.pos(c).length() - r).collect();
+        let mut worst = 0.0f64;
+        for &c in coords
+            .iter()
+            .filter(|&&c| (lat.pos(c).length() - r).abs() < lat.h)
+        {
+            let k = node_curvature(&lat, &band, &d, c).unwrap();
+            let exact = 2.0 / lat.pos(c).length();
+            worst = worst.max((k / exact - 1.0).abs());
+        }
+        assert!(worst < 0.02, "relative curvature error {worst}");
+        assert_eq!(node_curvature(&lat, &band, &d, [0, 0, 0]), None);
+    }
+}
