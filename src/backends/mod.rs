@@ -33,6 +33,7 @@ pub mod surface;
 
 pub use crate::levelset::TriangleSurface;
 pub use adapted::{AdaptedBackend, AdaptedOptions, McfScheme, Redistancing};
+pub use dtgrid::{DtGridBackend, DtGridOptions};
 pub use fitted::{fit, FitOptions, FittedMesh};
 pub use implicit::FnShape;
 pub use report::{CurvatureSamples, PhaseTimes, StepReport};

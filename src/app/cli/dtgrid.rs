@@ -44,6 +44,13 @@ pub struct HeatArgs {
     /// Table on the grids 17³…65³ only.
     #[arg(long)]
     quick: bool,
+    /// One run on this surface through the band back end: sphere, torus or star, in (−½, ½)³
+    /// (writes the zero level as .vtu and pictures).
+    #[arg(long, value_parser = ["sphere", "torus", "star"], conflicts_with = "expr")]
+    shape: Option<String>,
+    /// One run on the zero level of this function of x, y, z (negative inside), in (−½, ½)³.
+    #[arg(long)]
+    expr: Option<String>,
     /// Output directory.
     #[arg(short, long, default_value = "out/dtgrid")]
     output: PathBuf,
@@ -76,9 +83,42 @@ pub struct McfArgs {
     /// Table on the grids 17³…65³ only.
     #[arg(long)]
     quick: bool,
+    /// One run on this surface through the band back end: sphere, torus or star, in (−½, ½)³
+    /// (writes the zero level as .vtu and pictures).
+    #[arg(long, value_parser = ["sphere", "torus", "star"], conflicts_with = "expr")]
+    shape: Option<String>,
+    /// One run on the zero level of this function of x, y, z (negative inside), in (−½, ½)³.
+    #[arg(long)]
+    expr: Option<String>,
     /// Output directory.
     #[arg(short, long, default_value = "out/dtgrid")]
     output: PathBuf,
+}
+
+/// The options of a `--shape`/`--expr` run (33³ nodes unless `--n`).
+#[allow(clippy::too_many_arguments)]
+fn shape_run<'a>(
+    n: Option<usize>,
+    band: usize,
+    bc: &'a str,
+    inner: usize,
+    tau: Option<f64>,
+    t_end: f64,
+    shape: &'a Option<String>,
+    expr: &'a Option<String>,
+    output: &'a std::path::Path,
+) -> super::dtgrid_shape::ShapeRun<'a> {
+    super::dtgrid_shape::ShapeRun {
+        n: n.unwrap_or(33),
+        band,
+        bc,
+        inner,
+        tau,
+        t_end,
+        shape: shape.as_deref(),
+        expr: expr.as_deref(),
+        output,
+    }
 }
 
 /// Runs a `dtgrid` subcommand.
@@ -86,6 +126,16 @@ pub fn run(cmd: DtGrid) -> Result<()> {
     match cmd {
         DtGrid::Texture(a) => super::dtgrid_obj::texture(a),
         DtGrid::ObjMcf(a) => super::dtgrid_obj::obj_mcf(a),
+        DtGrid::Heat(a) if a.shape.is_some() || a.expr.is_some() => {
+            super::dtgrid_shape::heat(&shape_run(
+                a.n, a.band, &a.bc, 1, a.tau, a.t_end, &a.shape, &a.expr, &a.output,
+            ))
+        }
+        DtGrid::Mcf(a) if a.shape.is_some() || a.expr.is_some() => {
+            super::dtgrid_shape::mcf(&shape_run(
+                a.n, a.band, &a.bc, a.inner, a.tau, a.t_end, &a.shape, &a.expr, &a.output,
+            ))
+        }
         DtGrid::Heat(a) => {
             let rows = match a.n {
                 Some(n) => vec![repro::heat_row(&HeatOptions {

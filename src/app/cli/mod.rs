@@ -10,6 +10,7 @@ mod crosscheck;
 mod curvature;
 mod dtgrid;
 mod dtgrid_obj;
+mod dtgrid_shape;
 mod fit;
 mod flows;
 mod info;

@@ -8,18 +8,24 @@
 //! [`scheme`] (the linear systems of a step under each boundary condition), [`heat`] (the heat
 //! equation on a sphere, 000 Table 2.1), [`mcf`] (mean curvature motion with Dirichlet conditions
 //! and the nested inner iteration, 000 §2.4, Table 2.2), [`surface`] (the zero level, surface
-//! integrals, signed distance).
+//! integrals, signed distance), [`backend`] (the band behind the back-end contract),
+//! [`probe`] (point values and curvature of a band field), [`shape_heat`] (the heat equation on
+//! the zero level of any implicit function).
 
+pub mod backend;
 mod band;
 pub mod fem;
 pub mod grid;
 pub mod heat;
 pub mod lattice;
 pub mod mcf;
+pub mod probe;
 pub mod scheme;
+pub mod shape_heat;
 mod sorted;
 pub mod surface;
 
+pub use backend::{DtGridBackend, DtGridOptions};
 pub use band::{Band, GridCoord};
 pub use grid::{DtCoord, DtGrid, Implicit};
 pub use sorted::SortedBand;
