@@ -210,13 +210,15 @@ impl EditMesh3 {
     /// The best retriangulation of the shell of the interior edge `(a, b)` without that edge
     /// (3 tetrahedra become 2, n become 2n − 4): over all triangulations of its ring (dynamic
     /// programming), the one that maximises the smallest `quality` of its tetrahedra; only
-    /// positively oriented tetrahedra and new ring diagonals that are not already edges count.
-    /// Returns that smallest quality and the tetrahedra, or `None`.
+    /// positively oriented tetrahedra and new ring diagonals that are not already edges and
+    /// that `new_edge` accepts count. Returns that smallest quality and the tetrahedra, or
+    /// `None`.
     pub fn best_edge_removal(
         &self,
         a: u32,
         b: u32,
         quality: impl Fn([u32; 4]) -> f64,
+        new_edge: impl Fn(u32, u32) -> bool,
     ) -> Option<(f64, Vec<[u32; 4]>)> {
         let ring = self.edge_ring(a, b)?;
         let n = ring.len();
@@ -225,7 +227,9 @@ impl EditMesh3 {
         let mut diag_ok = [[true; MAX_RING]; MAX_RING];
         for i in 0..n {
             for j in i + 2..n {
-                if !(i == 0 && j == n - 1) && self.is_edge(ring[i], ring[j]) {
+                if !(i == 0 && j == n - 1)
+                    && (self.is_edge(ring[i], ring[j]) || !new_edge(ring[i], ring[j]))
+                {
                     diag_ok[i][j] = false;
                 }
             }
