@@ -91,7 +91,7 @@ fn edge_removal_and_face_swap_roundtrip() {
         if !(e.alive(a) && e.alive(b)) {
             continue;
         }
-        if let Some((q, tets)) = e.best_edge_removal(a, b, |_| 1.0, |_, _| true) {
+        if let Some((q, tets)) = e.best_edge_removal(a, b, f64::NEG_INFINITY, |_| 1.0, |_, _| true) {
             assert!(q > 0.0);
             e.replace_shell(a, b, &tets);
             removed += 1;
@@ -105,7 +105,7 @@ fn edge_removal_and_face_swap_roundtrip() {
                     swapped += 1;
                     valid(&e);
                     let (d, x) = (new[0][0], new[0][1]);
-                    let (_, back) = e.best_edge_removal(d, x, |_| 1.0, |_, _| true).unwrap();
+                    let (_, back) = e.best_edge_removal(d, x, f64::NEG_INFINITY, |_| 1.0, |_, _| true).unwrap();
                     assert_eq!(back.len(), 2);
                     e.replace_shell(d, x, &back);
                     valid(&e);

@@ -21,6 +21,7 @@ pub(crate) mod smooth;
 pub(crate) mod split;
 pub mod stats;
 pub(crate) mod swap;
+pub(crate) mod sweep;
 
 use super::cycle::Remesher;
 use super::options::PassKind;

@@ -71,6 +71,7 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
         let (q, tets) = c.mesh.best_edge_removal(
             a,
             b,
+            GAIN * q0,
             |t| c.quality_of(t, None),
             |x, y| c.length(x, y) <= c.l_max,
         )?;
