@@ -200,7 +200,8 @@ impl<'a> Ctx<'a> {
         let order = hilbert_order(&self.mesh.points, |v| self.mesh.alive(v as u32));
         let old = self.mesh.compact(Some(&order));
         self.metric = old.iter().map(|&v| self.metric[v as usize]).collect();
-        self.stamp.resize(self.metric.len().max(self.stamp.len()), 0);
+        self.stamp
+            .resize(self.metric.len().max(self.stamp.len()), 0);
         self.stamp = old.iter().map(|&v| self.stamp[v as usize]).collect();
     }
 }
@@ -284,5 +285,24 @@ impl Remesher for Ctx<'_> {
             )));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::cbrt_pos;
+
+    #[test]
+    fn cube_root_to_the_last_bits() {
+        let mut x = 1e-300;
+        while x < 1e300 {
+            for y in [x, 1.7 * x, 3.3 * x, 7.9 * x] {
+                let c = cbrt_pos(y);
+                assert!((c - y.cbrt()).abs() <= 4.0 * f64::EPSILON * c, "{y}: {c}");
+            }
+            x *= 10.0;
+        }
+        assert_eq!(cbrt_pos(0.0), 0.0);
+        assert_eq!(cbrt_pos(8.0), 2.0);
     }
 }

@@ -89,7 +89,11 @@ pub fn run(a: UgawgArgs) -> Result<()> {
 fn adapt(case: UgawgCase, start: &Mesh3, dir: &std::path::Path) -> Result<()> {
     use anisomesh::adapt::{run3, Run3Options, Target3};
     let metric = move |p: DVec3| case.metric(p);
-    let a = run3(Target3::Metric(&metric), Some(start), &Run3Options::default())?;
+    let a = run3(
+        Target3::Metric(&metric),
+        Some(start),
+        &Run3Options::default(),
+    )?;
     let r = &a.report;
     let c = conformity_analytic(&a.mesh.points, &a.mesh.tets, &metric)?;
     print_conformity(
