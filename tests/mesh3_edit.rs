@@ -91,7 +91,8 @@ fn edge_removal_and_face_swap_roundtrip() {
         if !(e.alive(a) && e.alive(b)) {
             continue;
         }
-        if let Some((q, tets)) = e.best_edge_removal(a, b, |_| 1.0) {
+        if let Some((q, tets)) = e.best_edge_removal(a, b, f64::NEG_INFINITY, |_| 1.0, |_, _| true)
+        {
             assert!(q > 0.0);
             e.replace_shell(a, b, &tets);
             removed += 1;
@@ -105,7 +106,9 @@ fn edge_removal_and_face_swap_roundtrip() {
                     swapped += 1;
                     valid(&e);
                     let (d, x) = (new[0][0], new[0][1]);
-                    let (_, back) = e.best_edge_removal(d, x, |_| 1.0).unwrap();
+                    let (_, back) = e
+                        .best_edge_removal(d, x, f64::NEG_INFINITY, |_| 1.0, |_, _| true)
+                        .unwrap();
                     assert_eq!(back.len(), 2);
                     e.replace_shell(d, x, &back);
                     valid(&e);
@@ -183,4 +186,78 @@ fn a_surface_without_volume_is_refused() {
     flat.points[3] = DVec3::new(0.3, 0.3, 0.0);
     assert!(EditMesh3::from_mesh(&flat).is_err());
     assert!(EditMesh3::from_mesh(&bad).is_ok());
+}
+
+/// The best of all triangulations of the ring `0..n` by enumeration: the largest worst
+/// quality, `None` when none is valid (non-positive tetrahedra or an existing diagonal).
+fn brute_best(e: &EditMesh3, a: u32, b: u32, ring: &[u32], i: usize, j: usize) -> Option<f64> {
+    use anisomesh::metric::Sym3;
+    if j < i + 2 {
+        return Some(f64::INFINITY);
+    }
+    let n = ring.len();
+    if !(i == 0 && j == n - 1) && e.is_edge(ring[i], ring[j]) {
+        return None;
+    }
+    let q = |t: [u32; 4]| {
+        let p = t.map(|v| e.points[v as usize]);
+        anisomesh::adapt::mean_ratio(p, &[Sym3::iso(1.0); 4])
+    };
+    let mut best: Option<f64> = None;
+    for k in i + 1..j {
+        let up = [a, ring[i], ring[k], ring[j]];
+        let down = [ring[i], ring[k], ring[j], b];
+        let (qu, qd) = (q(up), q(down));
+        if qu <= 0.0 || qd <= 0.0 {
+            continue;
+        }
+        let (Some(l), Some(r)) = (
+            brute_best(e, a, b, ring, i, k),
+            brute_best(e, a, b, ring, k, j),
+        ) else {
+            continue;
+        };
+        let v = qu.min(qd).min(l).min(r);
+        best = Some(best.map_or(v, |x: f64| x.max(v)));
+    }
+    best
+}
+
+#[test]
+fn edge_removal_finds_the_best_triangulation() {
+    use anisomesh::metric::Sym3;
+    let mut e = cube(3);
+    for v in 0..e.points.len() as u32 {
+        let p = e.points[v as usize];
+        let w = DVec3::new((7.3 * p.y).sin(), (5.1 * p.z).cos(), (3.7 * p.x).sin());
+        e.move_vertex(v, p + 0.04 * w);
+    }
+    let q = |t: [u32; 4]| {
+        let p = t.map(|v| e.points[v as usize]);
+        anisomesh::adapt::mean_ratio(p, &[Sym3::iso(1.0); 4])
+    };
+    let mut compared = 0;
+    for (a, b) in edges(&e) {
+        let Some(ring) = e.edge_ring(a, b) else {
+            continue;
+        };
+        let brute = brute_best(&e, a, b, &ring, 0, ring.len() - 1);
+        let dp = e.best_edge_removal(a, b, f64::NEG_INFINITY, q, |_, _| true);
+        assert_eq!(
+            brute,
+            dp.as_ref().map(|x| x.0),
+            "edge {a}-{b}, ring {ring:?}"
+        );
+        if let Some((best, tets)) = dp {
+            compared += 1;
+            assert_eq!(tets.len(), 2 * ring.len() - 4);
+            let worst = tets.iter().map(|&t| q(t)).fold(f64::INFINITY, f64::min);
+            assert_eq!(worst, best);
+            // A floor at the optimum leaves nothing; just below it, the same optimum.
+            assert!(e.best_edge_removal(a, b, best, q, |_, _| true).is_none());
+            let again = e.best_edge_removal(a, b, best * (1.0 - 1e-9), q, |_, _| true);
+            assert_eq!(again.map(|x| x.0), Some(best));
+        }
+    }
+    assert!(compared > 10, "{compared} edges compared");
 }

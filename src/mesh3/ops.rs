@@ -210,34 +210,47 @@ impl EditMesh3 {
     /// The best retriangulation of the shell of the interior edge `(a, b)` without that edge
     /// (3 tetrahedra become 2, n become 2n − 4): over all triangulations of its ring (dynamic
     /// programming), the one that maximises the smallest `quality` of its tetrahedra; only
-    /// positively oriented tetrahedra and new ring diagonals that are not already edges count.
-    /// Returns that smallest quality and the tetrahedra, or `None`.
+    /// positively oriented tetrahedra and new ring diagonals that are not already edges and
+    /// that `new_edge` accepts count. Returns that smallest quality and the tetrahedra, or
+    /// `None` when no triangulation has its smallest quality above `floor` (pass
+    /// `f64::NEG_INFINITY` for any valid one). Partial triangulations that cannot beat the best
+    /// found so far are not evaluated further (the result is the same, the work smaller).
     pub fn best_edge_removal(
         &self,
         a: u32,
         b: u32,
+        floor: f64,
         quality: impl Fn([u32; 4]) -> f64,
+        new_edge: impl Fn(u32, u32) -> bool,
     ) -> Option<(f64, Vec<[u32; 4]>)> {
         let ring = self.edge_ring(a, b)?;
         let n = ring.len();
-        let mut best = [[f64::NEG_INFINITY; MAX_RING]; MAX_RING];
+        let mut best = [[floor; MAX_RING]; MAX_RING];
         let mut arg = [[0usize; MAX_RING]; MAX_RING];
         let mut diag_ok = [[true; MAX_RING]; MAX_RING];
         for i in 0..n {
             for j in i + 2..n {
-                if !(i == 0 && j == n - 1) && self.is_edge(ring[i], ring[j]) {
+                if !(i == 0 && j == n - 1)
+                    && (self.is_edge(ring[i], ring[j]) || !new_edge(ring[i], ring[j]))
+                {
                     diag_ok[i][j] = false;
                 }
             }
         }
-        let tri_q = |i: usize, k: usize, j: usize| -> f64 {
+        // The worse of the two tetrahedra on the triangle (i, k, j), or anything at most
+        // `beat` when it cannot exceed `beat`.
+        let tri_q = |i: usize, k: usize, j: usize, beat: f64| -> f64 {
             let (ci, ck, cj) = (ring[i], ring[k], ring[j]);
             let up = [a, ci, ck, cj];
             let down = [ci, ck, cj, b];
             if !(positive(self.vol(up)) && positive(self.vol(down))) {
                 return f64::NEG_INFINITY;
             }
-            quality(up).min(quality(down))
+            let qu = quality(up);
+            if qu <= beat {
+                return qu;
+            }
+            qu.min(quality(down))
         };
         for len in 2..n {
             for i in 0..n - len {
@@ -256,7 +269,10 @@ impl EditMesh3 {
                     } else {
                         best[k][j]
                     };
-                    let q = tri_q(i, k, j).min(sub_l).min(sub_r);
+                    if sub_l.min(sub_r) <= best[i][j] {
+                        continue;
+                    }
+                    let q = tri_q(i, k, j, best[i][j]).min(sub_l).min(sub_r);
                     if q > best[i][j] {
                         best[i][j] = q;
                         arg[i][j] = k;
@@ -265,7 +281,7 @@ impl EditMesh3 {
             }
         }
         let q = best[0][n - 1];
-        if q == f64::NEG_INFINITY {
+        if q <= floor {
             return None;
         }
         let mut out = Vec::with_capacity(2 * n - 4);

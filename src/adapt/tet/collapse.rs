@@ -3,7 +3,9 @@
 //! ([`crate::mesh3::EditMesh3::collapse_check`]: link condition, positive volumes, boundary
 //! faces kept in their planes, ridges and corners kept), no edge of the new ball is longer than
 //! `l_max`, and no new tetrahedron has a quality below the floor unless the ball was already
-//! worse. Shortest first, an independent set per pass.
+//! worse. Shortest first; each candidate is checked on the current mesh when its turn comes
+//! (the edge still short, still an edge), so one pass makes every collapse it can rather than
+//! an independent set.
 
 use super::Ctx;
 use crate::adapt::pass::{run_pass, Operator};
@@ -19,10 +21,7 @@ impl Operator<Ctx<'_>> for Collapse {
     const SORTED: bool = true;
 
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<u32> {
-        ctx.next_pass();
-        (0..ctx.mesh.points.len() as u32)
-            .filter(|&v| ctx.mesh.alive(v))
-            .collect()
+        ctx.changed_vertices(super::Op::Collapse)
     }
 
     fn survey(&self, ctx: &Ctx<'_>, a: u32, _: bool, out: &mut Vec<(Self::Key, Option<()>)>) {
@@ -39,7 +38,7 @@ impl Operator<Ctx<'_>> for Collapse {
     }
 
     fn admissible(&self, ctx: &Ctx<'_>, (_, a, b): Self::Key) -> bool {
-        ctx.fresh(a) && ctx.fresh(b)
+        ctx.mesh.alive(a) && ctx.mesh.alive(b)
     }
 
     fn check(
@@ -48,6 +47,9 @@ impl Operator<Ctx<'_>> for Collapse {
         (_, a, b): Self::Key,
         _: Option<()>,
     ) -> Option<(u32, u32)> {
+        if ctx.length(a, b) >= ctx.l_min {
+            return None;
+        }
         let new = ctx.mesh.collapse_check(a, b)?;
         let before = ctx.ball_quality(a);
         let floor = ctx.q_min.min(before);

@@ -21,6 +21,7 @@ pub(crate) mod smooth;
 pub(crate) mod split;
 pub mod stats;
 pub(crate) mod swap;
+pub(crate) mod sweep;
 
 use super::cycle::Remesher;
 use super::options::PassKind;
@@ -44,9 +45,12 @@ pub(crate) struct Ctx<'a> {
     /// Quality floor of collapses and moves (mean ratio): a change may not create a
     /// tetrahedron worse than this unless the ball was already worse.
     pub q_min: f64,
-    /// Per vertex: the pass that last changed its ball.
+    /// Per vertex: the pass that last changed its ball (or moved a neighbour).
     pub stamp: Vec<u32>,
     pub pass: u32,
+    /// Per operator ([`Op`]): the pass at which it last started; it examines only what changed
+    /// since then.
+    pub last: [u32; 5],
     /// Quality of every tetrahedron at the start of the current swap pass (survey only).
     pub tq: Vec<f64>,
 }
@@ -63,6 +67,7 @@ impl<'a> Ctx<'a> {
             q_min: 0.3,
             stamp: vec![0; n],
             pass: 0,
+            last: [0; 5],
             tq: Vec::new(),
         }
     }
@@ -73,10 +78,24 @@ impl<'a> Ctx<'a> {
         self.pass
     }
 
-    /// Whether `v` is live and its ball unchanged in the current pass.
-    #[inline]
-    pub fn fresh(&self, v: u32) -> bool {
-        self.mesh.alive(v) && self.stamp[v as usize] != self.pass
+    /// Starts a pass of `op` and returns the pass at which `op` last started: the vertices
+    /// with a stamp at least that have had their ball changed since `op` last looked at them.
+    /// (The metric is exact, so an unchanged ball gives the same verdict as last time.)
+    pub fn start(&mut self, op: Op) -> u32 {
+        let since = self.last[op as usize];
+        if self.stamp.len() < self.mesh.points.len() {
+            self.stamp.resize(self.mesh.points.len(), 0);
+        }
+        self.last[op as usize] = self.next_pass();
+        since
+    }
+
+    /// Starts a pass of `op` and lists the live vertices changed since its previous pass.
+    pub fn changed_vertices(&mut self, op: Op) -> Vec<u32> {
+        let since = self.start(op);
+        (0..self.mesh.points.len() as u32)
+            .filter(|&v| self.mesh.alive(v) && self.stamp[v as usize] >= since)
+            .collect()
     }
 
     /// Marks the vertices of the ball of `v` (and `v`) as changed in this pass.
@@ -140,13 +159,17 @@ impl<'a> Ctx<'a> {
         mean_ratio(p, &m)
     }
 
-    /// Caches the quality of every live tetrahedron in `tq` and returns those below `q`.
-    pub fn bad_tets(&mut self, q: f64) -> Vec<u32> {
+    /// Caches in `tq` the quality of every live tetrahedron with a vertex changed since pass
+    /// `since` (infinity for the others) and returns those below `q`.
+    pub fn bad_tets(&mut self, q: f64, since: u32) -> Vec<u32> {
         use rayon::prelude::*;
         let tq: Vec<f64> = (0..self.mesh.tets.len() as u32)
             .into_par_iter()
             .map(|t| {
-                if self.mesh.tets[t as usize][0] == crate::mesh::NONE {
+                let tet = self.mesh.tets[t as usize];
+                if tet[0] == crate::mesh::NONE
+                    || tet.iter().all(|&v| self.stamp[v as usize] < since)
+                {
                     f64::INFINITY
                 } else {
                     self.tet_quality(t)
@@ -177,8 +200,35 @@ impl<'a> Ctx<'a> {
         let order = hilbert_order(&self.mesh.points, |v| self.mesh.alive(v as u32));
         let old = self.mesh.compact(Some(&order));
         self.metric = old.iter().map(|&v| self.metric[v as usize]).collect();
-        self.stamp = vec![0; old.len()];
+        self.stamp
+            .resize(self.metric.len().max(self.stamp.len()), 0);
+        self.stamp = old.iter().map(|&v| self.stamp[v as usize]).collect();
     }
+}
+
+/// The operators, indexing [`Ctx::last`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Op {
+    Split = 0,
+    Collapse = 1,
+    EdgeRemoval = 2,
+    FaceSwap = 3,
+    Smooth = 4,
+}
+
+/// The real cube root of `x >= 0` to within a few units in the last place: a bit-level first
+/// guess and four Newton steps (faster than the portable `f64::cbrt`).
+#[inline]
+pub(crate) fn cbrt_pos(x: f64) -> f64 {
+    if x <= 0.0 || !x.is_finite() {
+        return x.cbrt();
+    }
+    // 0x2a9f7893782da1ce: the bias that makes bits/3 + bias a first guess within ~5 %.
+    let mut y = f64::from_bits(x.to_bits() / 3 + 0x2a9f_7893_782d_a1ce);
+    for _ in 0..4 {
+        y -= (y - x / (y * y)) / 3.0;
+    }
+    y
 }
 
 /// Mean ratio of the tetrahedron `p` in the arithmetic mean of the vertex metrics `m`:
@@ -195,7 +245,7 @@ pub fn mean_ratio(p: [DVec3; 4], m: &[Sym3; 4]) -> f64 {
         s += mm.quad(p[j] - p[i]);
     }
     let vm = vol * mm.det().max(0.0).sqrt();
-    let c = (3.0 * vm).cbrt();
+    let c = cbrt_pos(3.0 * vm);
     12.0 * c * c / s
 }
 
@@ -235,5 +285,24 @@ impl Remesher for Ctx<'_> {
             )));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::cbrt_pos;
+
+    #[test]
+    fn cube_root_to_the_last_bits() {
+        let mut x = 1e-300;
+        while x < 1e300 {
+            for y in [x, 1.7 * x, 3.3 * x, 7.9 * x] {
+                let c = cbrt_pos(y);
+                assert!((c - y.cbrt()).abs() <= 4.0 * f64::EPSILON * c, "{y}: {c}");
+            }
+            x *= 10.0;
+        }
+        assert_eq!(cbrt_pos(0.0), 0.0);
+        assert_eq!(cbrt_pos(8.0), 2.0);
     }
 }

@@ -127,6 +127,43 @@ pub fn level_set_metric3(lm: &LevelSetMetric, u: f64, grad: DVec3, hess: &Sym3) 
     m
 }
 
+/// Up to three rounds of the quality sweep ([`super::sweep`]), each followed by a swap and a
+/// smoothing pass, recorded in `rep` (the sweep's collapses as a collapse pass).
+fn final_sweep(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptReport) -> Result<()> {
+    use crate::adapt::cycle::Remesher;
+    use crate::adapt::options::{PassKind, PassReport};
+    for _ in 0..3 {
+        let mut changed = 0;
+        for kind in [PassKind::Collapse, PassKind::Flip, PassKind::Smooth] {
+            let t = Instant::now();
+            let n = match kind {
+                PassKind::Collapse => super::sweep::pass(ctx),
+                k => ctx.run_pass(k),
+            };
+            match kind {
+                PassKind::Collapse => rep.collapses += n,
+                PassKind::Flip => rep.flips += n,
+                _ => rep.moves += n,
+            }
+            rep.passes.push(PassReport {
+                kind,
+                count: n,
+                seconds: t.elapsed().as_secs_f64(),
+            });
+            if opts.check_each_pass {
+                ctx.check()?;
+            }
+            if kind == PassKind::Collapse {
+                changed = n;
+            }
+        }
+        if changed == 0 {
+            break;
+        }
+    }
+    Ok(())
+}
+
 /// Adapts the Kuhn mesh of the box of `opts` (or `start`, when given) to `target` and reports
 /// the result. Errors: invalid options or start mesh, a metric that is not SPD and finite at a
 /// vertex, more vertices than `opts.adapt.max_vertices`, a defect found by the per-pass check.
@@ -162,6 +199,7 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     ctx.l_max = opts.adapt.l_max;
     let mut rep = AdaptReport::default();
     run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
+    final_sweep(&mut ctx, &opts.adapt, &mut rep)?;
     let (mesh, old) = ctx.mesh.to_mesh();
     let metric: Vec<Sym3> = old.iter().map(|&v| ctx.metric[v as usize]).collect();
     rep.seconds = clock.elapsed().as_secs_f64();

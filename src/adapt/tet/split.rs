@@ -39,10 +39,7 @@ impl Operator<Ctx<'_>> for Split {
     const SORTED: bool = true;
 
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<u32> {
-        ctx.next_pass();
-        (0..ctx.mesh.points.len() as u32)
-            .filter(|&v| ctx.mesh.alive(v))
-            .collect()
+        ctx.changed_vertices(super::Op::Split)
     }
 
     fn survey(&self, ctx: &Ctx<'_>, a: u32, _: bool, out: &mut Vec<(Self::Key, Option<()>)>) {

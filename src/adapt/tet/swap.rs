@@ -3,8 +3,11 @@
 //! the best retriangulation of its ring (3 → 2, n → 2n − 4 tetrahedra,
 //! [`crate::mesh3::EditMesh3::best_edge_removal`]) raises the worst quality of the shell; then an
 //! interior face between two tetrahedra one of which is below [`Q_SWAP`] is swapped 2 → 3 when
-//! the three new tetrahedra are better than the two old ones. Worst first, an independent set
-//! per pass, improvements by at least 2% so that no swap undoes another.
+//! the three new tetrahedra are better than the two old ones. Worst first, with
+//! improvements by at least 2% so that no swap undoes another, and no new edge longer than
+//! `l_max` (a swap never undoes a split). Each candidate is checked on the current mesh when
+//! its turn comes, so one pass applies every improving swap it finds (no independent set: a
+//! pass that skipped the neighbours of each swap took tens of passes to settle).
 
 use super::Ctx;
 use crate::adapt::pass::{run_pass, Operator};
@@ -26,11 +29,11 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
     type Plan = (u32, u32, Vec<[u32; 4]>);
     const SORTED: bool = true;
 
-    /// The edges of the tetrahedra below [`Q_SWAP`], each once with the worst quality of
-    /// those tetrahedra.
+    /// The edges of the tetrahedra below [`Q_SWAP`] with a vertex changed since the previous
+    /// pass, each once with the worst quality of those tetrahedra.
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
-        ctx.next_pass();
-        let bad = ctx.bad_tets(Q_SWAP);
+        let since = ctx.start(super::Op::EdgeRemoval);
+        let bad = ctx.bad_tets(Q_SWAP, since);
         let mut e: Vec<(u32, u32, u64)> = Vec::with_capacity(6 * bad.len());
         for t in bad {
             let tet = ctx.mesh.tets[t as usize];
@@ -49,7 +52,7 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
     }
 
     fn admissible(&self, ctx: &Ctx<'_>, (_, a, b): Self::Key) -> bool {
-        ctx.fresh(a) && ctx.fresh(b)
+        ctx.mesh.alive(a) && ctx.mesh.alive(b)
     }
 
     fn check(
@@ -65,7 +68,13 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
             .map(|&t| ctx.tet_quality(t))
             .fold(f64::INFINITY, f64::min);
         let c = &*ctx;
-        let (q, tets) = c.mesh.best_edge_removal(a, b, |t| c.quality_of(t, None))?;
+        let (q, tets) = c.mesh.best_edge_removal(
+            a,
+            b,
+            GAIN * q0,
+            |t| c.quality_of(t, None),
+            |x, y| c.length(x, y) <= c.l_max,
+        )?;
         (q > GAIN * q0).then_some((a, b, tets))
     }
 
@@ -86,11 +95,11 @@ impl Operator<Ctx<'_>> for FaceSwap {
     type Plan = ([u32; 3], [[u32; 4]; 3]);
     const SORTED: bool = true;
 
-    /// The interior faces of the tetrahedra below [`Q_SWAP`], each once with the worst
-    /// quality of those tetrahedra.
+    /// The interior faces of the tetrahedra below [`Q_SWAP`] with a vertex changed since the
+    /// previous pass, each once with the worst quality of those tetrahedra.
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
-        ctx.next_pass();
-        let bad = ctx.bad_tets(Q_SWAP);
+        let since = ctx.start(super::Op::FaceSwap);
+        let bad = ctx.bad_tets(Q_SWAP, since);
         let mut fs: Vec<([u32; 3], u64)> = Vec::with_capacity(4 * bad.len());
         for t in bad {
             let tet = ctx.mesh.tets[t as usize];
@@ -112,11 +121,14 @@ impl Operator<Ctx<'_>> for FaceSwap {
     }
 
     fn admissible(&self, ctx: &Ctx<'_>, (_, f): Self::Key) -> bool {
-        f.iter().all(|&v| ctx.fresh(v))
+        f.iter().all(|&v| ctx.mesh.alive(v))
     }
 
     fn check(&mut self, ctx: &mut Ctx<'_>, (_, f): Self::Key, _: Option<()>) -> Option<Self::Plan> {
         let new = ctx.mesh.face_swap_check(f)?;
+        if ctx.length(new[0][0], new[0][1]) > ctx.l_max {
+            return None;
+        }
         let q0 = ctx
             .mesh
             .face_tets(f)
