@@ -151,7 +151,9 @@ fn curvature_error(b: &AdaptedBackend, exact: impl Fn(DVec2) -> f64) -> f64 {
 #[test]
 fn curvature_converges_on_a_circle_and_an_ellipse() {
     // The ellipse x²/0.25 + y²/0.09 = 1 from its implicit function (not a distance).
-    let f = FnShape::new("ellipse", |p: DVec2| p.x * p.x / 0.25 + p.y * p.y / 0.09 - 1.0);
+    let f = FnShape::new("ellipse", |p: DVec2| {
+        p.x * p.x / 0.25 + p.y * p.y / 0.09 - 1.0
+    });
     let ellipse = |p: DVec2| {
         let (fx, fy) = (2.0 * p.x / 0.25, 2.0 * p.y / 0.09);
         let g = (fx * fx + fy * fy).sqrt();
@@ -367,14 +369,18 @@ fn explore_mcf() {
     let k = b.interface_curvature().unwrap();
     let r = radius(&b);
     let signed: f64 = k.values.iter().map(|v| v * r - 1.0).sum::<f64>() / k.len() as f64;
-    eprintln!("curvature at the end: mean signed relative error {signed:+.3e} (against 1/sqrt(area/pi))");
+    eprintln!(
+        "curvature at the end: mean signed relative error {signed:+.3e} (against 1/sqrt(area/pi))"
+    );
 }
 
 #[test]
 #[ignore]
 fn explore_curvature() {
     let cubic = env("X_CUBIC", 1.0) > 0.0;
-    let f = FnShape::new("ellipse", |p: DVec2| p.x * p.x / 0.25 + p.y * p.y / 0.09 - 1.0);
+    let f = FnShape::new("ellipse", |p: DVec2| {
+        p.x * p.x / 0.25 + p.y * p.y / 0.09 - 1.0
+    });
     let c = circle(DVec2::ZERO, 0.5);
     for h in [0.02, 0.01, 0.005] {
         for (name, s) in [("circle", &c as &dyn Shape), ("ellipse", &f as &dyn Shape)] {

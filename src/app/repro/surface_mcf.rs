@@ -202,7 +202,8 @@ pub fn table(report: &SurfaceMcfReport) -> String {
             r.tau,
             r.error,
             eoc,
-            r.paper_error.map_or("-".to_string(), |e| format!("{e:.3e}")),
+            r.paper_error
+                .map_or("-".to_string(), |e| format!("{e:.3e}")),
             r.seconds
         );
     }

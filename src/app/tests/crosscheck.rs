@@ -41,7 +41,11 @@ fn tiny_crosscheck_converges_and_writes() {
         for b in p.backends() {
             let v: Vec<&crosscheck::Row> = p.rows_of(b).collect();
             let est = (v[1].value.unwrap() - v[0].value.unwrap()).abs();
-            assert!(v[1].error <= est, "{name} {b}: error {:.2e} > estimate {est:.2e}", v[1].error);
+            assert!(
+                v[1].error <= est,
+                "{name} {b}: error {:.2e} > estimate {est:.2e}",
+                v[1].error
+            );
         }
     }
 

@@ -49,7 +49,12 @@ fn patch(mesh: &Mesh2, v: u32, rings: usize, verts: &mut Vec<u32>) {
 
 /// The gradient and Hessian of the cubic least-squares fit of `u` at vertex `v` (module
 /// documentation), with `u(v)` kept; `None` when the patch cannot determine a cubic.
-pub(crate) fn cubic_fit(mesh: &Mesh2, u: &[f64], v: u32, verts: &mut Vec<u32>) -> Option<(DVec2, Sym2)> {
+pub(crate) fn cubic_fit(
+    mesh: &Mesh2,
+    u: &[f64],
+    v: u32,
+    verts: &mut Vec<u32>,
+) -> Option<(DVec2, Sym2)> {
     patch(mesh, v, 2, verts);
     if verts.len() - 1 < MIN_POINTS {
         patch(mesh, v, 3, verts);
@@ -190,10 +195,11 @@ mod tests {
             }
         }
         let mesh = Mesh2::from_triangles(points, tris).unwrap();
-        let f = |p: DVec2| 0.3 + p.x - 2.0 * p.y + p.x * p.x + 3.0 * p.x * p.y - p.y * p.y
-            + 2.0 * p.x.powi(3)
-            - p.x * p.x * p.y
-            + 5.0 * p.y.powi(3);
+        let f = |p: DVec2| {
+            0.3 + p.x - 2.0 * p.y + p.x * p.x + 3.0 * p.x * p.y - p.y * p.y + 2.0 * p.x.powi(3)
+                - p.x * p.x * p.y
+                + 5.0 * p.y.powi(3)
+        };
         let u: Vec<f64> = mesh.points.iter().map(|&p| f(p)).collect();
         let v = (6 * (n + 1) + 6) as u32;
         let p = mesh.points[v as usize];
@@ -209,7 +215,9 @@ mod tests {
         );
         assert!((g - ge).length() < 1e-7, "{g} {ge}");
         assert!(
-            (h.xx - he.xx).abs() < 1e-6 && (h.xy - he.xy).abs() < 1e-6 && (h.yy - he.yy).abs() < 1e-5,
+            (h.xx - he.xx).abs() < 1e-6
+                && (h.xy - he.xy).abs() < 1e-6
+                && (h.yy - he.yy).abs() < 1e-5,
             "{h:?} {he:?}"
         );
     }

@@ -55,7 +55,9 @@ pub(crate) fn derivatives(
         .into_par_iter()
         .with_min_len(64)
         .filter(|&v| near[v])
-        .map_init(Vec::new, |ws, v| (v, super::cubic::cubic_fit(mesh, u, v as u32, ws)))
+        .map_init(Vec::new, |ws, v| {
+            (v, super::cubic::cubic_fit(mesh, u, v as u32, ws))
+        })
         .collect();
     for (v, fit) in fits {
         if let Some((g, h)) = fit {

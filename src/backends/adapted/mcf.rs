@@ -75,8 +75,7 @@ pub(crate) fn step(
             }
             let mid: Vec<f64> = u.iter().zip(&d1).map(|(u, d)| u + d).collect();
             let d2 = increment(&mid, cost)?;
-            Ok(u
-                .iter()
+            Ok(u.iter()
                 .zip(d1.iter().zip(&d2))
                 .map(|(u, (a, b))| u + 0.5 * (a + b))
                 .collect())

@@ -66,8 +66,8 @@ use crate::levelset::redistance::{redistance_geometric, redistance_ppr, PprOptio
 use crate::levelset::{
     enclosed_area, extract_zero_level, interface_length, Normalized, Polyline, Shape,
 };
-use crate::metric::Sym2;
 use crate::mesh::{Location, Mesh2};
+use crate::metric::Sym2;
 use crate::DVec2;
 use source::{distance_defect, QuadraticSource};
 use std::time::Instant;
@@ -304,7 +304,12 @@ impl AdaptedBackend {
         };
         b.readapt(&mut StepReport::default())?;
         // The re-adaptation transferred `u` by reconstruction; the function itself is at hand.
-        b.u = b.mesh.points.iter().map(|&p| normalized.distance(p)).collect();
+        b.u = b
+            .mesh
+            .points
+            .iter()
+            .map(|&p| normalized.distance(p))
+            .collect();
         if !spec.function.is_distance() {
             b.u = blend_with_distance(&b.mesh, &b.u, b.opts.band * spec.resolution)?;
         }

@@ -31,13 +31,19 @@ pub type Build3 = Box<dyn Fn(&BuildSpec<'_, D3>) -> Result<Box<dyn LevelSetBacke
 
 /// The 2D back end `B` with its default options, as a [`Build2`] entry.
 pub fn entry2<B: LevelSetBackend<D2> + 'static>(name: &'static str) -> (&'static str, Build2) {
-    (name, Box::new(|s| Ok(Box::new(B::build(s)?) as Box<dyn LevelSetBackend<D2>>)))
+    (
+        name,
+        Box::new(|s| Ok(Box::new(B::build(s)?) as Box<dyn LevelSetBackend<D2>>)),
+    )
 }
 
 /// The 3D back end `B` with its default options, as a [`Build3`] entry.
 #[allow(dead_code)] // used once a 3D back end is listed
 pub fn entry3<B: LevelSetBackend<D3> + 'static>(name: &'static str) -> (&'static str, Build3) {
-    (name, Box::new(|s| Ok(Box::new(B::build(s)?) as Box<dyn LevelSetBackend<D3>>)))
+    (
+        name,
+        Box::new(|s| Ok(Box::new(B::build(s)?) as Box<dyn LevelSetBackend<D3>>)),
+    )
 }
 
 /// The 2D level-set back ends the cross-check runs (the circle, the curvatures, Zalesak):
@@ -273,7 +279,10 @@ pub fn write_outputs(dir: &Path, report: &CrossReport) -> Result<()> {
         writeln!(w)
     })?;
     anisomesh::io::atomic_write(&dir.join("crosscheck.csv"), |w| {
-        writeln!(w, "problem,backend,resolution,dof,error,order,seconds,value")?;
+        writeln!(
+            w,
+            "problem,backend,resolution,dof,error,order,seconds,value"
+        )?;
         for p in &report.problems {
             for r in &p.rows {
                 let o = r.order.map_or(String::new(), |o| format!("{o}"));
