@@ -34,7 +34,7 @@ fn tiny_crosscheck_converges_and_writes() {
     for name in ["circle_mcf", "sphere_mcf"] {
         let p = problem(&report, name);
         let pairs = crosscheck::agreement(p);
-        assert!(pairs.len() >= 1, "{name}");
+        assert!(!pairs.is_empty(), "{name}");
         for (a, b, diff, est) in pairs {
             assert!(diff <= est, "{name}: {a} vs {b}: {diff:.2e} > {est:.2e}");
         }

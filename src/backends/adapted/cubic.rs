@@ -127,7 +127,7 @@ pub(crate) fn cubic_fit(
 fn solve(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; N]> {
     let mut s = [0.0; N];
     for i in 0..N {
-        if !(a[i][i] > 0.0) {
+        if a[i][i].is_nan() || a[i][i] <= 0.0 {
             return None;
         }
         s[i] = 1.0 / a[i][i].sqrt();
@@ -145,11 +145,12 @@ fn solve(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; N]> {
         }
         a.swap(col, p);
         b.swap(col, p);
+        let pivot = a[col];
         for r in col + 1..N {
-            let f = a[r][col] / a[col][col];
+            let f = a[r][col] / pivot[col];
             if f != 0.0 {
-                for j in col..N {
-                    a[r][j] -= f * a[col][j];
+                for (x, p) in a[r][col..].iter_mut().zip(&pivot[col..]) {
+                    *x -= f * p;
                 }
                 b[r] -= f * b[col];
             }

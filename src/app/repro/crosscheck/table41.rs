@@ -72,8 +72,7 @@ pub fn run(n: usize) -> Result<Vec<Table41Row>> {
     let tau = h * h;
     let radius = 1.0 / 3.0;
     let opts = McfOptions::default();
-    let mut band: McfState<DtGrid<C3>> =
-        McfState::new(lat, opts.j, &|p| p.length() - radius)?;
+    let mut band: McfState<DtGrid<C3>> = McfState::new(lat, opts.j, &|p| p.length() - radius)?;
     let nodes = band.nb.band.len();
     let rep = band.step(tau, &opts)?;
     let mut rows = vec![Table41Row {
@@ -91,7 +90,10 @@ pub fn run(n: usize) -> Result<Vec<Table41Row>> {
         let s = ParametricSurface::icosphere(radius, level, 1)?;
         let e = longest_edge(&s);
         let gap = (e / h).ln().abs();
-        let better = best.as_ref().is_none_or(|(g, _)| gap < *g);
+        let better = match &best {
+            None => true,
+            Some((g, _)) => gap < *g,
+        };
         if better {
             best = Some((gap, s));
         }
