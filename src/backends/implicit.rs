@@ -28,4 +28,7 @@ impl<F: Fn(DVec2) -> f64 + Send + Sync> Shape for FnShape<F> {
     fn name(&self) -> String {
         self.name.clone()
     }
+    fn is_distance(&self) -> bool {
+        false
+    }
 }

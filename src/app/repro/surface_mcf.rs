@@ -73,11 +73,13 @@ pub struct SurfaceMcfRow {
     pub tau: f64,
     /// `|R̄(T) − R(T)|`.
     pub error: f64,
+    /// The averaged radius `R̄(T)`.
+    pub mean_radius: f64,
     /// EOC against the previous row of the same order, in `h ∝ V^{-1/2}`.
     pub eoc: Option<f64>,
-    /// 002's P2 error at this vertex count (log-log interpolation inside its table, the nearest
-    /// row outside).
-    pub paper_error: f64,
+    /// On P2 rows, 002's P2 error at this vertex count (log-log interpolation inside its table,
+    /// the nearest row outside); `None` on P1 rows (002 reports P2 only).
+    pub paper_error: Option<f64>,
     /// CG iterations of the run.
     pub iterations: usize,
     /// Wall-clock seconds.
@@ -128,15 +130,17 @@ pub fn run_one(
         iterations += theta_step(&mut s, tau, opts.theta)?.iterations;
     }
     let exact = (opts.r0 * opts.r0 - 4.0 * opts.t_end).sqrt();
+    let mean_radius = s.mean_radius()?;
     Ok(SurfaceMcfRow {
         order,
         level,
         vertices: s.n_vertices,
         dofs: s.nodes.len(),
         tau,
-        error: (s.mean_radius()? - exact).abs(),
+        error: (mean_radius - exact).abs(),
+        mean_radius,
         eoc: None,
-        paper_error: paper_error(s.n_vertices),
+        paper_error: (order == 2).then(|| paper_error(s.n_vertices)),
         iterations,
         seconds: start.elapsed().as_secs_f64(),
     })
@@ -190,8 +194,17 @@ pub fn table(report: &SurfaceMcfReport) -> String {
     for r in &report.rows {
         let eoc = r.eoc.map_or("-".to_string(), |e| format!("{e:.2}"));
         s += &format!(
-            "{:>5} {:>5} {:>8} {:>8} {:>9.2e} {:>10.3e} {:>6} {:>12.3e} {:>8.2}\n",
-            r.order, r.level, r.vertices, r.dofs, r.tau, r.error, eoc, r.paper_error, r.seconds
+            "{:>5} {:>5} {:>8} {:>8} {:>9.2e} {:>10.3e} {:>6} {:>12} {:>8.2}\n",
+            r.order,
+            r.level,
+            r.vertices,
+            r.dofs,
+            r.tau,
+            r.error,
+            eoc,
+            r.paper_error
+                .map_or("-".to_string(), |e| format!("{e:.3e}")),
+            r.seconds
         );
     }
     s += "002 (P2, bisection refinement, tau 0.02 halved per level): 318 / 766 / 1745 vertices \

@@ -26,12 +26,37 @@ fn tiny_crosscheck_converges_and_writes() {
     // One line per run; a Zalesak run fills two problems.
     let rows = report.problems.iter().map(|p| p.rows.len()).sum::<usize>();
     assert_eq!(lines, rows - problem(&report, "zalesak_area").rows.len());
+    assert_eq!(lines, crosscheck::planned_runs(Resolution::Tiny));
 
-    // Circle by curvature. Measured: adapted 4.3e-3 -> 2.1e-3 (order 1.07), polygon 2.4e-3 ->
-    // 5.4e-4 (2.12), quadratic arcs 6.2e-3 -> 1.7e-3 (1.90).
+    // The back ends agree with each other within their own error estimates (the change of
+    // the final radius between their two levels), and each is within its estimate of the
+    // exact radius.
+    for name in ["circle_mcf", "sphere_mcf"] {
+        let p = problem(&report, name);
+        let pairs = crosscheck::agreement(p);
+        assert!(!pairs.is_empty(), "{name}");
+        for (a, b, diff, est) in pairs {
+            assert!(diff <= est, "{name}: {a} vs {b}: {diff:.2e} > {est:.2e}");
+        }
+        for b in p.backends() {
+            let v: Vec<&crosscheck::Row> = p.rows_of(b).collect();
+            let est = (v[1].value.unwrap() - v[0].value.unwrap()).abs();
+            assert!(
+                v[1].error <= est,
+                "{name} {b}: error {:.2e} > estimate {est:.2e}",
+                v[1].error
+            );
+        }
+    }
+
+    // Circle by curvature: every level-set back end at order at least 1. Measured: adapted
+    // 2.1e-3 -> 1.0e-3 (order 1.09), polygon 2.4e-3 -> 5.4e-4 (2.12), quadratic arcs 6.2e-3 ->
+    // 1.7e-3 (1.90).
     let c = problem(&report, "circle_mcf");
-    let (o, e) = finest(c, "adapted");
-    assert!(o > 0.7 && e < 3e-3, "adapted {o} {e}");
+    for (b, _) in crosscheck::level_set_backends() {
+        let (o, e) = finest(c, b);
+        assert!(o >= 1.0 && e < 2e-3, "{b} {o} {e}");
+    }
     for b in ["parametric P1", "parametric P2"] {
         let (o, e) = finest(c, b);
         assert!(o > 1.7 && e < 2e-3, "{b} {o} {e}");
@@ -44,19 +69,21 @@ fn tiny_crosscheck_converges_and_writes() {
     assert!((1.8..2.2).contains(&o1) && (1.6..2.4).contains(&o2));
     assert!(e2 < 0.1 * e1 && e2 < 6.05e-4);
 
-    // Curvature of a circle: every back end within 1 % at the finest level. Measured: adapted
-    // 2.5e-3 -> 1.4e-3, polygon 2.6e-2 -> 6.4e-3 (2.03), arcs 8.8e-3 -> 2.4e-3 (1.91).
-    let k = problem(&report, "curvature_circle");
-    for b in ["adapted", "parametric P1", "parametric P2"] {
-        let (o, e) = finest(k, b);
-        assert!(o > 0.5 && e < 1e-2, "{b} {o} {e}");
-    }
-    // Curvature of the ellipse from a non-distance function: the parametric curves converge at
-    // order about 2 (measured 2.25, 1.80).
-    let k = problem(&report, "curvature_ellipse");
-    for b in ["parametric P1", "parametric P2"] {
-        let (o, e) = finest(k, b);
-        assert!(o > 1.5 && e < 2e-2, "{b} {o} {e}");
+    // Curvature of a circle and of the ellipse from a non-distance function: every back end
+    // converges at order at least 1, but the adapted mesh on the circle (measured 0.87 on
+    // these two levels, 0.95 on the next). Measured: polygon 2.6e-2 -> 6.4e-3 (2.03), arcs
+    // 8.8e-3 -> 2.4e-3 (1.91); ellipse adapted 1.40, polygon 2.25, arcs 1.80.
+    for name in ["curvature_circle", "curvature_ellipse"] {
+        let k = problem(&report, name);
+        for b in k.backends() {
+            let (o, e) = finest(k, b);
+            let min = if name == "curvature_circle" && b == "adapted" {
+                0.8
+            } else {
+                1.0
+            };
+            assert!(o >= min && e < 2e-2, "{name} {b} {o} {e}");
+        }
     }
 
     // Zalesak, one revolution. Measured: area 2.1e-4 / 6.4e-4 (the signed errors of the P1
@@ -92,6 +119,7 @@ fn cost_at_error_interpolates_between_bracketing_rows() {
         resolution: 1.0,
         dof,
         error,
+        value: None,
         order: None,
         seconds,
     };

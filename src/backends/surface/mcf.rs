@@ -41,7 +41,7 @@ pub(crate) fn check_theta_tau(theta: f64, tau: f64) -> Result<()> {
 
 /// Solves `(M + τθA) U_k = M x_k − τ(1 − θ) A x_k` for every coordinate column `x[k]` (in
 /// place), given the assembled `M` and `A` on one pattern.
-pub(crate) fn theta_solve(
+pub fn theta_solve(
     m: &Csr,
     a: &Csr,
     tau: f64,

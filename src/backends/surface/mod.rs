@@ -21,5 +21,5 @@ mod mcf;
 mod mesh;
 
 pub use curve::ParametricCurve;
-pub use mcf::{assemble_surface, theta_step, ThetaStepStats};
+pub use mcf::{assemble_surface, theta_solve, theta_step, ThetaStepStats};
 pub use mesh::ParametricSurface;

@@ -13,9 +13,10 @@
 //! of a curve's element, `V^{-1/2}` on a surface).
 
 mod problems;
+pub mod table41;
 
 use crate::app::plot::{loglog_png, LogLogPlot, Series};
-use anisomesh::backends::{AdaptedBackend, BuildSpec, LevelSetBackend, D2};
+use anisomesh::backends::{AdaptedBackend, BuildSpec, LevelSetBackend, D2, D3};
 use anisomesh::error::{Error, Result};
 use serde::Serialize;
 use std::path::Path;
@@ -25,12 +26,36 @@ pub use problems::{circle_mcf, curvature, sphere_mcf, zalesak};
 /// Builds a 2D level-set back end of one kind from a [`BuildSpec`].
 pub type Build2 = Box<dyn Fn(&BuildSpec<'_, D2>) -> Result<Box<dyn LevelSetBackend<D2>>>>;
 
-/// The 2D level-set back ends the cross-check runs: adding one is one line here.
+/// Builds a 3D level-set back end of one kind from a [`BuildSpec`].
+pub type Build3 = Box<dyn Fn(&BuildSpec<'_, D3>) -> Result<Box<dyn LevelSetBackend<D3>>>>;
+
+/// The 2D back end `B` with its default options, as a [`Build2`] entry.
+pub fn entry2<B: LevelSetBackend<D2> + 'static>(name: &'static str) -> (&'static str, Build2) {
+    (
+        name,
+        Box::new(|s| Ok(Box::new(B::build(s)?) as Box<dyn LevelSetBackend<D2>>)),
+    )
+}
+
+/// The 3D back end `B` with its default options, as a [`Build3`] entry.
+#[allow(dead_code)] // used once a 3D back end is listed
+pub fn entry3<B: LevelSetBackend<D3> + 'static>(name: &'static str) -> (&'static str, Build3) {
+    (
+        name,
+        Box::new(|s| Ok(Box::new(B::build(s)?) as Box<dyn LevelSetBackend<D3>>)),
+    )
+}
+
+/// The 2D level-set back ends the cross-check runs (the circle, the curvatures, Zalesak):
+/// adding one is one line here.
 pub fn level_set_backends() -> Vec<(&'static str, Build2)> {
-    vec![(
-        "adapted",
-        Box::new(|s| Ok(Box::new(AdaptedBackend::build(s)?) as Box<dyn LevelSetBackend<D2>>)),
-    )]
+    vec![entry2::<AdaptedBackend>("adapted")]
+}
+
+/// The 3D level-set back ends the cross-check runs on the shrinking sphere, beside the
+/// parametric surfaces: adding one is one line here.
+pub fn level_set_backends_3d() -> Vec<(&'static str, Build3)> {
+    Vec::new()
 }
 
 /// How much to run.
@@ -66,6 +91,9 @@ pub struct Row {
     pub dof: usize,
     /// The problem's error measure.
     pub error: f64,
+    /// The computed quantity whose error is measured, where it is one number (the final
+    /// radius of the flows), for comparing back ends with each other.
+    pub value: Option<f64>,
     /// Observed order against the previous row of the same back end.
     pub order: Option<f64>,
     /// Wall-clock seconds.
@@ -145,12 +173,47 @@ pub struct CrossReport {
     pub problems: Vec<Problem>,
 }
 
+/// The number of runs [`run`] reports to its `progress` (one per back end, level and problem;
+/// a Zalesak run fills two problems).
+pub fn planned_runs(res: Resolution) -> usize {
+    let l = res.levels();
+    let (n2, n3) = (level_set_backends().len(), level_set_backends_3d().len());
+    3 * l * (n2 + 2) + l * (n3 + 2) + l.min(3) * n2
+}
+
+/// For each pair of back ends in `p` with at least two rows carrying a value: whether their
+/// finest values agree within the sum of their error estimates, each estimate the change of the
+/// value between its last two rows (an upper bound of the finest error when the order is at
+/// least 1). Returns `(a, b, |v_a − v_b|, est_a + est_b)`.
+pub fn agreement(p: &Problem) -> Vec<(String, String, f64, f64)> {
+    let est: Vec<(String, f64, f64)> = p
+        .backends()
+        .into_iter()
+        .filter_map(|b| {
+            let v: Vec<f64> = p.rows_of(b).filter_map(|r| r.value).collect();
+            (v.len() >= 2).then(|| {
+                let (a, c) = (v[v.len() - 2], v[v.len() - 1]);
+                (b.to_string(), c, (c - a).abs())
+            })
+        })
+        .collect();
+    let mut out = Vec::new();
+    for i in 0..est.len() {
+        for j in i + 1..est.len() {
+            let (a, b) = (&est[i], &est[j]);
+            out.push((a.0.clone(), b.0.clone(), (a.1 - b.1).abs(), a.2 + b.2));
+        }
+    }
+    out
+}
+
 /// Runs every problem; `progress` hears a line per finished run.
 pub fn run(res: Resolution, progress: &mut dyn FnMut(&str)) -> Result<CrossReport> {
     let backends = level_set_backends();
+    let backends_3d = level_set_backends_3d();
     let mut problems = vec![
         circle_mcf(res, &backends, progress)?,
-        sphere_mcf(res, progress)?,
+        sphere_mcf(res, &backends_3d, progress)?,
         curvature(res, false, &backends, progress)?,
         curvature(res, true, &backends, progress)?,
     ];
@@ -186,6 +249,13 @@ pub fn tables(report: &CrossReport) -> String {
             .filter(|r| r.order.is_some_and(|o| o > 0.0))
             .map(|r| r.error)
             .fold(0.0, f64::max);
+        for (a, b, diff, est) in agreement(p) {
+            let verdict = if diff <= est { "agree" } else { "DISAGREE" };
+            s += &format!(
+                "{a} vs {b}: final values differ by {diff:.2e}, error estimates sum to {est:.2e}: \
+                 {verdict}\n"
+            );
+        }
         if target <= 0.0 {
             continue;
         }
@@ -209,14 +279,18 @@ pub fn write_outputs(dir: &Path, report: &CrossReport) -> Result<()> {
         writeln!(w)
     })?;
     anisomesh::io::atomic_write(&dir.join("crosscheck.csv"), |w| {
-        writeln!(w, "problem,backend,resolution,dof,error,order,seconds")?;
+        writeln!(
+            w,
+            "problem,backend,resolution,dof,error,order,seconds,value"
+        )?;
         for p in &report.problems {
             for r in &p.rows {
                 let o = r.order.map_or(String::new(), |o| format!("{o}"));
+                let v = r.value.map_or(String::new(), |v| format!("{v}"));
                 writeln!(
                     w,
-                    "{},{},{},{},{},{},{}",
-                    p.name, r.backend, r.resolution, r.dof, r.error, o, r.seconds
+                    "{},{},{},{},{},{},{},{}",
+                    p.name, r.backend, r.resolution, r.dof, r.error, o, r.seconds, v
                 )?;
             }
         }

@@ -1,6 +1,6 @@
 //! The cross-check problems: each returns a [`Problem`] with one row per back end and level.
 
-use super::{Build2, Problem, Resolution, Row};
+use super::{Build2, Build3, Problem, Resolution, Row};
 use crate::app::repro::surface_mcf::{self, SurfaceMcfOptions};
 use anisomesh::backends::surface::ParametricCurve;
 use anisomesh::backends::{BuildSpec, CurvatureSamples, FnShape, D2};
@@ -60,6 +60,7 @@ pub fn circle_mcf(
                 resolution: h,
                 dof: b.dof(),
                 error: (r - exact).abs(),
+                value: Some(r),
                 order: None,
                 seconds: start.elapsed().as_secs_f64(),
             });
@@ -85,6 +86,7 @@ pub fn circle_mcf(
                 resolution: 2.0 * PI * R0 / n as f64,
                 dof: c.nodes.len(),
                 error: (r - exact).abs(),
+                value: Some(r),
                 order: None,
                 seconds: start.elapsed().as_secs_f64(),
             });
@@ -105,9 +107,47 @@ pub fn circle_mcf(
 
 /// The sphere shrinking by mean curvature from `R0 = 2` to `T = 0.1` (002): the error of the
 /// averaged radius, parametric P1 and P2 from icosahedral level 2, `τ = 0.02` divided by 4 per
-/// level.
-pub fn sphere_mcf(res: Resolution, progress: &mut dyn FnMut(&str)) -> Result<Problem> {
+/// level; the 3D level-set back ends in `[−2.5, 2.5]³` at `h = 0.2 / 2^k` with `τ = h²`, the
+/// error of the radius `(3V/4π)^{1/3}` of the enclosed volume.
+pub fn sphere_mcf(
+    res: Resolution,
+    backends: &[(&'static str, Build3)],
+    progress: &mut dyn FnMut(&str),
+) -> Result<Problem> {
     let mut rows = Vec::new();
+    let (r0, t_end): (f64, f64) = (2.0, 0.1);
+    let exact = (r0 * r0 - 4.0 * t_end).sqrt();
+    let sphere = move |p: anisomesh::geom::DVec3| p.length() - r0;
+    for (name, build) in backends {
+        for k in 0..res.levels() {
+            let h = 0.2 / 2f64.powi(k as i32);
+            let start = Instant::now();
+            let mut b = build(&BuildSpec {
+                function: &sphere,
+                domain: (
+                    anisomesh::geom::DVec3::splat(-2.5),
+                    anisomesh::geom::DVec3::splat(2.5),
+                ),
+                resolution: h,
+            })?;
+            let steps = (t_end / (h * h)).round().max(1.0) as usize;
+            for _ in 0..steps {
+                b.advance_mean_curvature(t_end / steps as f64)?;
+            }
+            let r = (3.0 * b.enclosed_measure()? / (4.0 * PI)).cbrt();
+            let error = (r - exact).abs();
+            progress(&format!("sphere_mcf {name} h {h}: error {error:.2e}"));
+            rows.push(Row {
+                backend: name.to_string(),
+                resolution: h,
+                dof: b.dof(),
+                error,
+                value: Some(r),
+                order: None,
+                seconds: start.elapsed().as_secs_f64(),
+            });
+        }
+    }
     let opts = SurfaceMcfOptions::default();
     for order in [1, 2] {
         for k in 0..res.levels() {
@@ -122,6 +162,7 @@ pub fn sphere_mcf(res: Resolution, progress: &mut dyn FnMut(&str)) -> Result<Pro
                 resolution: 1.0 / (r.vertices as f64).sqrt(),
                 dof: r.dofs,
                 error: r.error,
+                value: Some(r.mean_radius),
                 order: None,
                 seconds: r.seconds,
             });
@@ -201,6 +242,7 @@ pub fn curvature(
                 resolution: h,
                 dof: backend.dof(),
                 error: e,
+                value: None,
                 order: None,
                 seconds: start.elapsed().as_secs_f64(),
             });
@@ -238,6 +280,7 @@ pub fn curvature(
                 resolution: c.length() / n as f64,
                 dof: c.nodes.len(),
                 error: e,
+                value: None,
                 order: None,
                 seconds: start.elapsed().as_secs_f64(),
             });
@@ -290,6 +333,7 @@ pub fn zalesak(
                 resolution: h,
                 dof: b.dof(),
                 error,
+                value: None,
                 order: None,
                 seconds,
             };
