@@ -9,10 +9,14 @@
 //! 001 (5.2)), `stefan.rs` (the Stefan loop of 001 §6 on the fitted mesh).
 
 mod curvature;
+mod extension;
 mod fit;
 mod stefan;
 
 pub use curvature::{interface_curvature, vertex_curvature, VertexCurvature};
+pub use extension::{
+    extend_velocity, normal_derivative_jumps, Extension, ExtensionKind, ExtensionOptions,
+};
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
