@@ -20,4 +20,7 @@ pub use extension::{
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
-pub use stefan::{circle_deviation, stefan_step, StefanState, StefanStepReport};
+pub use stefan::{
+    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanOptions, StefanState,
+    StefanStepReport, VelocityExtension,
+};
