@@ -48,9 +48,9 @@ fn frank(n: usize, extension: VelocityExtension) -> (f64, f64, f64) {
 
 #[test]
 fn frank_circle_converges_at_first_order() {
-    // Harmonic extension, measured mean radius errors: 0.046 (n = 32), 0.026 (64), 0.0141
-    // (128): orders 0.82, 0.88. Halving Δt/h to 0.05 raises them (0.056, 0.031 without the
-    // interface kept by the redistancing): the error is a loss per step, not a Δt error.
+    // Harmonic extension, measured mean radius errors: 0.049 (n = 32), 0.027 (64), 0.0145
+    // (128): orders 0.83, 0.92. Δt = 0.05 h raises them (0.056, 0.031): the error is a loss
+    // per step, not a Δt error.
     let errs: Vec<(f64, f64, f64)> = [32, 64, 128]
         .into_iter()
         .map(|n| frank(n, VelocityExtension::Harmonic))

@@ -36,22 +36,20 @@ pub struct StefanArgs {
     /// Phase angle of the anisotropy in degrees (default 45 for sin4, 0 for cos4).
     #[arg(long)]
     phase: Option<f64>,
-    /// Velocity extension: ls (least squares, 001 §3), harmonic, averaged (length-weighted
-    /// mean over 3h), or auto (ls with surface tension, harmonic without: the least-squares
-    /// extension is unstable without surface tension).
-    #[arg(long, default_value = "auto", value_parser = ["auto", "ls", "harmonic", "averaged"])]
+    /// Velocity extension: harmonic (001 §3, the default: stable in every case), ls (least
+    /// squares with the gradient-jump rows, 001 §3: unstable without surface tension) or
+    /// averaged (length-weighted mean over 3h).
+    #[arg(long, default_value = "harmonic", value_parser = ["ls", "harmonic", "averaged"])]
     extension: String,
     /// Output directory (stefan.json, stefan.csv, figures).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
 }
 
-fn extension(a: &StefanArgs, h: f64, surface_tension: bool) -> VelocityExtension {
+fn extension(a: &StefanArgs, h: f64) -> VelocityExtension {
     match a.extension.as_str() {
-        "harmonic" => VelocityExtension::Harmonic,
         "averaged" => VelocityExtension::Averaged { smoothing: 3.0 * h },
         "ls" => VelocityExtension::LeastSquares,
-        _ if surface_tension => VelocityExtension::LeastSquares,
         _ => VelocityExtension::Harmonic,
     }
 }
@@ -69,7 +67,7 @@ pub fn run(a: StefanArgs) -> Result<()> {
     // The averaging length is 3 h of each mesh (h = 4/n); the variant carries it per run.
     let mut rows = Vec::new();
     for &n in &ns {
-        let ext = extension(&a, 4.0 / n as f64, false);
+        let ext = extension(&a, 4.0 / n as f64);
         let mut row = frank::run(&[n], t_end, ext)?.remove(0);
         if let Some(prev) = rows.last() {
             let prev: &frank::FrankRow = prev;
@@ -83,11 +81,7 @@ pub fn run(a: StefanArgs) -> Result<()> {
         frank::S0,
         frank::T0,
         t_end,
-        if a.extension == "auto" {
-            "harmonic"
-        } else {
-            &a.extension
-        }
+        a.extension
     );
     println!(
         "{:>5} {:>9} {:>6} {:>11} {:>11} {:>11} {:>6} {:>8} {:>6} {:>8}",
@@ -158,11 +152,7 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         }
     };
     let eps_c = coef(a.eps_c.unwrap_or(default_eps), "eps-c")?;
-    let ext = extension(
-        a,
-        if star { 2.0 } else { 3.0 } / n.max(1) as f64,
-        eps_c.mean > 0.0,
-    );
+    let ext = extension(a, if star { 2.0 } else { 3.0 } / n.max(1) as f64);
     let case = paper::Case {
         seed,
         n,

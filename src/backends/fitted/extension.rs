@@ -222,11 +222,11 @@ pub fn extend_velocity(
             // KᵀK (K is symmetric) and Kᵀf.
             let mut t2: Vec<(u32, u32, f64)> = Vec::new();
             let mut rhs = vec![0.0; unknowns];
-            for r in 0..unknowns {
+            for (r, &fr) in f.iter().enumerate() {
                 let span = k.row_ptr[r]..k.row_ptr[r + 1];
                 for a in span.clone() {
                     let ca = k.col[a];
-                    rhs[ca as usize] += k.val[a] * f[r];
+                    rhs[ca as usize] += k.val[a] * fr;
                     for b in span.clone() {
                         t2.push((ca, k.col[b], k.val[a] * k.val[b]));
                     }
