@@ -1,47 +1,87 @@
 //! `anisomesh stefan`: the Stefan problem on the interface-fitted mesh (001 §6).
 
 use crate::app::repro::stefan::{frank, paper};
-use anisomesh::error::Result;
+use anisomesh::backends::fitted::{Anisotropy, Coefficient, VelocityExtension};
+use anisomesh::error::{Error, Result};
 use clap::Args;
 use std::path::PathBuf;
 
 /// Options of `anisomesh stefan`.
 #[derive(Debug, Args)]
 pub struct StefanArgs {
-    /// The case: frank (Frank's expanding circle against the exact solution) or pentagon
-    /// (001 §6, no surface tension; defaults n = 128, dt = 2.5e-4, t-end = 0.4).
-    #[arg(long, default_value = "frank", value_parser = ["frank", "pentagon"])]
+    /// The case: frank (Frank's expanding circle against the exact solution), pentagon
+    /// (001 Figs. 6.1–6.3: n = 128, dt = 2.5e-4, t-end = 0.4) or star (001 Fig. 6.4: n = 128,
+    /// dt = 1e-4, t-end = 0.04, eps-c = eps-v = 0.001, anisotropy cos4).
+    #[arg(long, default_value = "frank", value_parser = ["frank", "pentagon", "star"])]
     case: String,
-    /// One base mesh of n x n cells instead of the refinement table 32, 64, 128, 256.
+    /// One base mesh of n x n cells (frank: instead of the refinement table 32, 64, 128, 256).
     #[arg(long)]
     n: Option<usize>,
-    /// End time (frank: from t0 = 0.25; default 0.5 for frank, 0.4 for pentagon).
+    /// End time (frank: from t0 = 0.25; default 0.5).
     #[arg(long)]
     t_end: Option<f64>,
-    /// Time step (pentagon; frank uses 0.2 h).
-    #[arg(long, default_value_t = 2.5e-4)]
-    dt: f64,
+    /// Time step (pentagon, star; frank uses 0.2 h).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Mean surface tension coefficient eps_C of the Gibbs–Thomson relation (001 (6.2)).
+    #[arg(long)]
+    eps_c: Option<f64>,
+    /// Mean kinetic coefficient eps_V of (6.2).
+    #[arg(long)]
+    eps_v: Option<f64>,
+    /// Angular dependence of eps_C and eps_V: none, sin4 ((8/3) sin^4(2(theta - phase))) or
+    /// cos4 (1 - cos 4(theta + phase)).
+    #[arg(long, value_parser = ["none", "sin4", "cos4"])]
+    anisotropy: Option<String>,
+    /// Phase angle of the anisotropy in degrees (default 45 for sin4, 0 for cos4).
+    #[arg(long)]
+    phase: Option<f64>,
+    /// Velocity extension: harmonic (001 §3, the default: stable in every case), ls (least
+    /// squares with the gradient-jump rows, 001 §3: unstable without surface tension) or
+    /// averaged (length-weighted mean over 3h).
+    #[arg(long, default_value = "harmonic", value_parser = ["ls", "harmonic", "averaged"])]
+    extension: String,
     /// Output directory (stefan.json, stefan.csv, figures).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
 }
 
+fn extension(a: &StefanArgs, h: f64) -> VelocityExtension {
+    match a.extension.as_str() {
+        "averaged" => VelocityExtension::Averaged { smoothing: 3.0 * h },
+        "ls" => VelocityExtension::LeastSquares,
+        _ => VelocityExtension::Harmonic,
+    }
+}
+
 /// Runs the case, prints its table and writes the report.
 pub fn run(a: StefanArgs) -> Result<()> {
-    if a.case == "pentagon" {
-        return pentagon(&a);
+    if a.case != "frank" {
+        return paper_case(&a);
     }
     let t_end = a.t_end.unwrap_or(0.5);
     let ns = match a.n {
         Some(n) => vec![n],
         None => vec![32, 64, 128, 256],
     };
-    let rows = frank::run(&ns, t_end)?;
+    // The averaging length is 3 h of each mesh (h = 4/n); the variant carries it per run.
+    let mut rows = Vec::new();
+    for &n in &ns {
+        let ext = extension(&a, 4.0 / n as f64);
+        let mut row = frank::run(&[n], t_end, ext)?.remove(0);
+        if let Some(prev) = rows.last() {
+            let prev: &frank::FrankRow = prev;
+            row.order =
+                (prev.radius_error / row.radius_error).ln() / (n as f64 / prev.n as f64).ln();
+        }
+        rows.push(row);
+    }
     println!(
-        "Frank's circle, S0 = {}, t {} -> {}, (-2, 2)^2, dt ~ 0.2 h",
+        "Frank's circle, S0 = {}, t {} -> {}, (-2, 2)^2, dt ~ 0.2 h, extension {}",
         frank::S0,
         frank::T0,
-        t_end
+        t_end,
+        a.extension
     );
     println!(
         "{:>5} {:>9} {:>6} {:>11} {:>11} {:>11} {:>6} {:>8} {:>6} {:>8}",
@@ -71,26 +111,90 @@ pub fn run(a: StefanArgs) -> Result<()> {
     Ok(())
 }
 
-fn pentagon(a: &StefanArgs) -> Result<()> {
+fn paper_case(a: &StefanArgs) -> Result<()> {
+    let star = a.case == "star";
+    let seed = if star {
+        paper::Seed::Star
+    } else {
+        paper::Seed::Pentagon
+    };
     let n = a.n.unwrap_or(128);
-    let rep = paper::run(n, a.dt, a.t_end.unwrap_or(0.4), 8)?;
+    let dt = a.dt.unwrap_or(if star { 1e-4 } else { 2.5e-4 });
+    let t_end = a.t_end.unwrap_or(if star { 0.04 } else { 0.4 });
+    let default_eps = if star { 0.001 } else { 0.0 };
+    let shape = a
+        .anisotropy
+        .as_deref()
+        .unwrap_or(if star { "cos4" } else { "none" });
+    let anisotropy = match shape {
+        "sin4" => Anisotropy::Sin4 {
+            phase: a.phase.unwrap_or(45.0).to_radians(),
+        },
+        "cos4" => Anisotropy::Cos4 {
+            phase: a.phase.unwrap_or(0.0).to_radians(),
+        },
+        _ => Anisotropy::Isotropic,
+    };
+    if let Some(p) = a.phase {
+        if !p.is_finite() {
+            return Err(Error::InvalidInput(format!(
+                "stefan: --phase must be finite (got {p})"
+            )));
+        }
+    }
+    let coef = |mean: f64, what: &str| -> Result<Coefficient> {
+        if mean.is_finite() && mean >= 0.0 {
+            Ok(Coefficient { mean, anisotropy })
+        } else {
+            Err(Error::InvalidInput(format!(
+                "stefan: --{what} must be finite and non-negative (got {mean})"
+            )))
+        }
+    };
+    let eps_c = coef(a.eps_c.unwrap_or(default_eps), "eps-c")?;
+    let ext = extension(a, if star { 2.0 } else { 3.0 } / n.max(1) as f64);
+    let case = paper::Case {
+        seed,
+        n,
+        dt,
+        t_end,
+        eps_c,
+        eps_v: coef(a.eps_v.unwrap_or(default_eps), "eps-v")?,
+        extension: ext,
+        snapshots: if star { 4 } else { 8 },
+    };
+    let rep = paper::run(&case)?;
     println!(
-        "pentagon seed (circumradius {}), {n} x {n} cells, dt = {}, no surface tension",
-        paper::SEED_RADIUS,
-        a.dt
+        "{} seed, {n} x {n} cells, dt = {dt}, {} steps, eps_C = {}, eps_V = {}, extension {}",
+        a.case, rep.steps, rep.eps_c, rep.eps_v, rep.extension
     );
     println!(
-        "{:>7} {:>6} {:>10} {:>8} {:>8} {:>4}",
-        "t", "step", "area", "fitted", "max vn", "CG"
+        "{:>7} {:>6} {:>10} {:>8} {:>8} {:>8} {:>8} {:>6} {:>4}",
+        "t", "step", "area", "length", "fitted", "max vn", "max |T|", "ext", "CG"
     );
     for s in &rep.snapshots {
         println!(
-            "{:>7.4} {:>6} {:>10.4e} {:>8} {:>8.3} {:>4}",
-            s.time, s.step, s.area, s.fitted_vertices, s.max_vn, s.cg_iterations
+            "{:>7.4} {:>6} {:>10.4e} {:>8.3} {:>8} {:>8.3} {:>8.2e} {:>6} {:>4}",
+            s.time,
+            s.step,
+            s.area,
+            s.interface_length,
+            s.fitted_vertices,
+            s.max_vn,
+            s.max_interface_temperature,
+            s.extension_unknowns,
+            s.cg_iterations
         );
     }
     println!("{:.1} s", rep.seconds);
-    paper::write(&a.output, &rep)?;
-    println!("wrote {}", a.output.join("stefan.json").display());
+    paper::write(&a.output, &a.case, &rep)?;
+    println!(
+        "wrote {} and {}",
+        a.output.join("stefan.json").display(),
+        a.output
+            .join("figures")
+            .join(format!("{}.png", a.case))
+            .display()
+    );
     Ok(())
 }

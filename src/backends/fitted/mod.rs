@@ -8,18 +8,25 @@
 //! Files: `fit.rs` (cutting and labelling), `curvature.rs` (curvature by local averaging,
 //! 001 (5.2)), `stefan.rs` (the Stefan loop of 001 §6 on the fitted mesh), `reinit.rs` (the
 //! Poisson reinitialisation of 001 §4), `backend.rs` (the back-end contract on a uniform base
-//! grid).
+//! grid), `extension.rs` (the velocity extension of 001 §3).
 
 mod backend;
 mod curvature;
+mod extension;
 mod fit;
 mod reinit;
 mod stefan;
 
 pub use backend::{FittedBackend, FittedOptions, FittedRedistancing};
 pub use curvature::{interface_curvature, vertex_curvature, VertexCurvature};
+pub use extension::{
+    extend_velocity, normal_derivative_jumps, Extension, ExtensionKind, ExtensionOptions,
+};
 pub use fit::{
     fit, snapped_values, FitOptions, FittedMesh, REF_INSIDE, REF_INTERFACE, REF_OUTSIDE,
 };
 pub use reinit::{poisson_reinit, PoissonOutput, PoissonReinit};
-pub use stefan::{circle_deviation, stefan_step, StefanState, StefanStepReport};
+pub use stefan::{
+    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanOptions, StefanState,
+    StefanStepReport, VelocityExtension,
+};

@@ -1,16 +1,24 @@
-//! The Stefan loop of 001 §6 on an interface-fitted mesh: per step the zero level of the P1 level
-//! set is fitted into the base mesh, the heat equation (6.1) is advanced on the fitted mesh with
-//! `T = 0` on the interface (the Gibbs–Thomson relation (6.2) without surface tension or kinetic
-//! undercooling), the normal velocity comes from the Stefan condition (6.4), it is extended off
-//! the interface, the level set is moved and redistanced, and the temperature is restricted back
-//! to the base mesh.
+//! The Stefan loop of 001 §6 on an interface-fitted mesh. Per step (001 §6 steps 2–9): the
+//! curvature κ of the level set by local averaging (001 (5.2), [`super::vertex_curvature`]) on
+//! the base mesh; the zero level fitted into the base mesh and κ interpolated onto it; one
+//! implicit Euler step of the heat equation (6.1) on the fitted mesh with the Gibbs–Thomson value
+//! `T = −ε_C(θ) κ − ε_V(θ) v_n` (6.2) on the interface (`θ` the angle of the outward normal, `v_n`
+//! the previous step's extended velocity) and insulated walls (6.3) or prescribed boundary
+//! values; the Stefan velocity `v_n = −[∂T/∂n]` (6.4) at the interface vertices; its extension
+//! off the interface ([`VelocityExtension`]: by default the least-squares extension of 001 §3,
+//! [`super::extend_velocity`], on a band around the interface); unrefinement (the extension
+//! restricted to the base vertices); `φ ← φ − Δt v_ext` on the base vertices of the band; and
+//! redistancing to the exact distance to the P1 zero level
+//! ([`crate::levelset::redistance::redistance_geometric`]), negative in the solid, by default
+//! optionally keeping the values at the ends of the cut edges
+//! ([`StefanOptions::keep_interface`]).
 //!
-//! The extension of `v_n` gives every base vertex near the interface the length-weighted mean of
-//! `v_n` over the interface vertices around its nearest one (constant along the normals up to
-//! the smoothing length, first-order accurate; see [`stefan_step`]). The level set, a signed distance (`|∇φ| = 1`), moves by `φ ← φ − Δt v_ext`, and is
-//! then replaced by the exact distance to its P1 zero level
-//! ([`crate::levelset::redistance::redistance_geometric`]), negative in the solid.
+//! Cuts within `snap_distance` of a base vertex are snapped to it (the fitting's one snapping
+//! rule, [`FitOptions::snap`]): the gradient-jump rows of the extension on thinner slivers
+//! would dominate its normal equations.
 
+use super::curvature::vertex_curvature;
+use super::extension::{extend_velocity, ExtensionKind, ExtensionOptions};
 use super::fit::{fit, FitOptions, FittedMesh, REF_INSIDE};
 use crate::error::{Error, Result};
 use crate::flows::stefan::{heat_step, stefan_velocity};
@@ -25,8 +33,24 @@ pub struct StefanState {
     pub phi: Vec<f64>,
     /// Temperature at the base vertices.
     pub temperature: Vec<f64>,
+    /// The extended normal velocity of the last step at the base vertices (0 outside the
+    /// band; enters the kinetic term of (6.2)).
+    pub velocity: Vec<f64>,
     /// Current time.
     pub time: f64,
+}
+
+impl StefanState {
+    /// A state at rest: the level set `phi`, the temperature, the time; velocity 0.
+    pub fn new(phi: Vec<f64>, temperature: Vec<f64>, time: f64) -> StefanState {
+        let velocity = vec![0.0; phi.len()];
+        StefanState {
+            phi,
+            temperature,
+            velocity,
+            time,
+        }
+    }
 }
 
 /// What one step of [`stefan_step`] did.
@@ -38,6 +62,10 @@ pub struct StefanStepReport {
     pub max_vn: f64,
     /// Conjugate-gradient iterations of the heat step.
     pub cg_iterations: usize,
+    /// Unknowns of the velocity extension (0 for the averaged one).
+    pub extension_unknowns: usize,
+    /// Largest `|T|` prescribed on the interface by (6.2).
+    pub max_interface_temperature: f64,
 }
 
 /// The outward unit normals `∇φ/|∇φ|` of the fitted level set at its interface vertices (zero
@@ -61,9 +89,10 @@ fn interface_normals(fm: &FittedMesh, on: &[bool]) -> Vec<DVec2> {
     }
     g.into_iter()
         .map(|x| {
-            let l = x.length();
-            if l > 0.0 {
-                x / l
+            // Where the gradients around a vertex cancel (a symmetric pinch), any unit vector.
+            let n = x / x.length();
+            if n.is_finite() && (n.length() - 1.0).abs() < 1e-9 {
+                n
             } else {
                 DVec2::new(1.0, 0.0)
             }
@@ -71,85 +100,183 @@ fn interface_normals(fm: &FittedMesh, on: &[bool]) -> Vec<DVec2> {
         .collect()
 }
 
-/// One step of the Stefan loop (001 §6 steps 1–10) of length `dt` on `base`.
-///
-/// `boundary` optionally prescribes the temperature on the outer boundary vertices at the new
-/// time, `boundary(p, t)` (for an exact solution); without it the walls are insulated (6.3).
-/// Only the base vertices within `band` of the interface move with the extended velocity; the
-/// others keep their sign and get their new distance from the redistancing. The velocity given
-/// to a base vertex at distance `d` from the nearest interface vertex is the mean of `v_n` over the
-/// interface vertices within `d + smoothing`, weighted by their share of the interface length
-/// (`smoothing = 0`: the nearest vertex's value; three mesh sizes average out the
-/// first-order noise of the one-sided gradients at the cut vertices).
-///
-/// Errors: a non-positive or non-finite `dt` or `band`, fields of the wrong size or with
-/// non-finite values, a level set with no zero level ([`Error::EmptyLevelSet`]), the solver's
-/// errors.
-pub fn stefan_step(
-    base: &Mesh2,
-    state: &mut StefanState,
-    dt: f64,
+/// How the interface velocity is extended off the interface (001 §6 step 6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum VelocityExtension {
+    /// The least-squares extension of 001 §3 with the gradient-jump rows (3.9).
+    LeastSquares,
+    /// The harmonic extension of 001 §3 (continuous, kinked across the interface).
+    Harmonic,
+    /// Each base vertex at distance `d` from the nearest interface vertex gets the mean of `v_n`
+    /// over the interface vertices within `d + smoothing`, weighted by their share of the
+    /// interface length (constant along the normals, first order; smooths out short waves).
+    Averaged {
+        /// The averaging length beyond the nearest interface vertex.
+        smoothing: f64,
+    },
+}
+
+/// The angular dependence of a Gibbs–Thomson coefficient (001 §6), `θ` the angle of the outward
+/// normal with the x axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Anisotropy {
+    /// `ε(θ) = ε̄`.
+    Isotropic,
+    /// `ε(θ) = ε̄ (8/3) sin⁴(2(θ − phase))` (001 Fig. 6.3 with phase 45°; mean ε̄).
+    Sin4 {
+        /// Phase angle, radians.
+        phase: f64,
+    },
+    /// `ε(θ) = ε̄ [1 − cos 4(θ + θ₀)]` (the fourfold anisotropy of 001 Fig. 6.4).
+    Cos4 {
+        /// Phase angle θ₀, radians.
+        phase: f64,
+    },
+}
+
+/// A Gibbs–Thomson coefficient `ε(θ)` of 001 (6.2): a mean value and its angular dependence.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coefficient {
+    /// The mean value `ε̄`.
+    pub mean: f64,
+    /// The angular dependence.
+    pub anisotropy: Anisotropy,
+}
+
+impl Coefficient {
+    /// The coefficient 0 (no surface tension or no kinetic term).
+    pub const ZERO: Coefficient = Coefficient {
+        mean: 0.0,
+        anisotropy: Anisotropy::Isotropic,
+    };
+
+    /// The value at the normal angle `theta` (radians).
+    pub fn value(&self, theta: f64) -> f64 {
+        match self.anisotropy {
+            Anisotropy::Isotropic => self.mean,
+            Anisotropy::Sin4 { phase } => {
+                self.mean * (8.0 / 3.0) * (2.0 * (theta - phase)).sin().powi(4)
+            }
+            Anisotropy::Cos4 { phase } => self.mean * (1.0 - (4.0 * (theta + phase)).cos()),
+        }
+    }
+}
+
+/// Options of [`stefan_step`].
+#[derive(Clone, Copy)]
+pub struct StefanOptions<'a> {
+    /// Time step.
+    pub dt: f64,
+    /// Half-width of the band around the interface in which the velocity is extended and the
+    /// level set moved (the other base vertices keep their sign and get their new distance
+    /// from the redistancing).
+    pub band: f64,
+    /// Cuts closer than this to a base vertex are snapped to it (a small fraction of `h`).
+    pub snap_distance: f64,
+    /// The velocity extension.
+    pub extension: VelocityExtension,
+    /// Surface tension coefficient `ε_C(θ)` of (6.2).
+    pub eps_c: Coefficient,
+    /// Kinetic coefficient `ε_V(θ)` of (6.2).
+    pub eps_v: Coefficient,
+    /// The temperature on the outer boundary at the new time, `boundary(p, t)` (for an exact
+    /// solution); insulated walls (6.3) without it.
+    pub boundary: Option<&'a dyn Fn(DVec2, f64) -> f64>,
+    /// Keep the moved level set at the ends of the cut base edges when redistancing (only the
+    /// other vertices get the distance to the P1 zero level), so that redistancing does not move
+    /// the interface. Otherwise every vertex is redistanced, which shrinks a convex interface by
+    /// `O(h² κ)` per step (the P1 interpolant of the distance to a polygon lies outside it near
+    /// its corners).
+    pub keep_interface: bool,
+}
+
+impl<'a> StefanOptions<'a> {
+    /// The loop without surface tension or kinetic term: harmonic extension on a band of `3h`,
+    /// cuts within `h/100` snapped, every vertex redistanced, insulated walls.
+    ///
+    /// The harmonic extension is the default because it is stable without surface tension: its
+    /// kink across `Γ` damps the shortest waves of `v_n` (whose P1 one-sided gradients are
+    /// noisy) after unrefinement. The least-squares extension passes them on unchanged, and with
+    /// `ε_C = 0` the interface then breaks up within a few hundred steps (Frank's circle at
+    /// n = 64, the pentagon seed at 129²); with `ε_C = 0.001` it ran stably on the pentagon,
+    /// with the anisotropic `0.001 (8/3) sin⁴(2(θ − 45°))` (zero at four angles) it did not.
+    pub fn new(dt: f64, h: f64) -> StefanOptions<'a> {
+        StefanOptions {
+            dt,
+            band: 3.0 * h,
+            snap_distance: 0.01 * h,
+            extension: VelocityExtension::Harmonic,
+            eps_c: Coefficient::ZERO,
+            eps_v: Coefficient::ZERO,
+            boundary: None,
+            keep_interface: false,
+        }
+    }
+}
+
+fn check_options(o: &StefanOptions) -> Result<()> {
+    let positive = |x: f64, what: &str| {
+        if x.is_finite() && x > 0.0 {
+            Ok(())
+        } else {
+            Err(Error::InvalidInput(format!(
+                "Stefan step: the {what} must be finite and positive (got {x})"
+            )))
+        }
+    };
+    positive(o.dt, "time step")?;
+    positive(o.band, "velocity band")?;
+    if !(o.snap_distance.is_finite() && o.snap_distance >= 0.0) {
+        return Err(Error::InvalidInput(format!(
+            "Stefan step: the snapping distance must be finite and non-negative (got {})",
+            o.snap_distance
+        )));
+    }
+    if let VelocityExtension::Averaged { smoothing } = o.extension {
+        if !(smoothing.is_finite() && smoothing >= 0.0) {
+            return Err(Error::InvalidInput(format!(
+                "Stefan step: the smoothing length must be finite and non-negative (got {smoothing})"
+            )));
+        }
+    }
+    for (c, name) in [
+        (o.eps_c, "surface tension"),
+        (o.eps_v, "kinetic coefficient"),
+    ] {
+        let phase_ok = match c.anisotropy {
+            Anisotropy::Isotropic => true,
+            Anisotropy::Sin4 { phase } | Anisotropy::Cos4 { phase } => phase.is_finite(),
+        };
+        if !(c.mean.is_finite() && c.mean >= 0.0 && phase_ok) {
+            return Err(Error::InvalidInput(format!(
+                "Stefan step: the {name} must be finite and non-negative with a finite phase \
+                 (got {c:?})"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The length-weighted mean extension ([`VelocityExtension::Averaged`]) at the base vertices
+/// within `band`; other entries 0.
+fn averaged_extension(
+    fm: &FittedMesh,
+    iface: &[usize],
+    vn: &[f64],
     band: f64,
     smoothing: f64,
-    boundary: Option<&dyn Fn(DVec2, f64) -> f64>,
-) -> Result<StefanStepReport> {
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(Error::InvalidInput(format!(
-            "Stefan step: the time step must be finite and positive (got {dt})"
-        )));
-    }
-    if !(smoothing.is_finite() && smoothing >= 0.0) {
-        return Err(Error::InvalidInput(format!(
-            "Stefan step: the smoothing length must be finite and non-negative (got {smoothing})"
-        )));
-    }
-    if !(band.is_finite() && band > 0.0) {
-        return Err(Error::InvalidInput(format!(
-            "Stefan step: the velocity band must be finite and positive (got {band})"
-        )));
-    }
-    check_p1_field(base.n_points(), &state.phi, "level set")?;
-    check_p1_field(base.n_points(), &state.temperature, "temperature")?;
-    let fm = fit(base, &state.phi, &FitOptions::default())?;
+) -> Vec<f64> {
     let m = &fm.mesh;
-    let n = m.n_points();
-    let mut on = vec![false; n];
-    for [a, b] in fm.interface_edges() {
-        on[a as usize] = true;
-        on[b as usize] = true;
-    }
-    for (o, &u) in on.iter_mut().zip(&fm.u) {
-        if u == 0.0 {
-            *o = true;
-        }
-    }
-    let t_new = state.time + dt;
-    let temp = fm.extend_from_base(&state.temperature)?;
-    let mut fixed = on.clone();
-    let mut values = vec![0.0; n];
-    if let Some(bc) = boundary {
-        for (v, &b) in m.boundary_vertex_flags().iter().enumerate() {
-            if b && !on[v] {
-                fixed[v] = true;
-                values[v] = bc(m.points[v], t_new);
-            }
-        }
-    }
-    let (temp, cg) = heat_step(m, &fixed, &values, &temp, dt)?;
-    let normals = interface_normals(&fm, &on);
-    let vn = stefan_velocity(m, REF_INSIDE, &on, &normals, &temp)?;
-    let iface: Vec<usize> = (0..n).filter(|&v| on[v]).collect();
-    let max_vn = iface.iter().fold(0.0f64, |a, &v| a.max(vn[v].abs()));
     // Dual length of each interface vertex: half the lengths of its interface edges.
-    let mut weight = vec![0.0f64; n];
+    let mut weight = vec![0.0f64; m.n_points()];
     for [a, b] in fm.interface_edges() {
         let l = 0.5 * (m.points[a as usize] - m.points[b as usize]).length();
         weight[a as usize] += l;
         weight[b as usize] += l;
     }
-    let mut phi = fm.u[..fm.n_base_vertices].to_vec();
-    for (v, p) in phi.iter_mut().enumerate() {
-        if p.abs() > band {
+    let mut out = vec![0.0; fm.n_base_vertices];
+    for (v, o) in out.iter_mut().enumerate() {
+        if fm.u[v].abs() > band {
             continue;
         }
         let x = m.points[v];
@@ -167,16 +294,135 @@ pub fn stefan_step(
             }
         }
         if sw > 0.0 {
-            *p -= dt * sv / sw;
+            *o = sv / sw;
         }
     }
-    state.phi = redistance_geometric(base, &phi)?;
+    out
+}
+
+/// One step of the Stefan loop (001 §6 steps 2–9) on `base` (see the module documentation).
+///
+/// Errors: a non-positive or non-finite `dt` or `band`, negative or non-finite coefficients,
+/// fields of the wrong size or with non-finite values, a level set with no zero level
+/// ([`Error::EmptyLevelSet`]), the solvers' errors.
+pub fn stefan_step(
+    base: &Mesh2,
+    state: &mut StefanState,
+    o: &StefanOptions,
+) -> Result<StefanStepReport> {
+    check_options(o)?;
+    let nb = base.n_points();
+    check_p1_field(nb, &state.phi, "level set")?;
+    check_p1_field(nb, &state.temperature, "temperature")?;
+    check_p1_field(nb, &state.velocity, "velocity")?;
+    let surface_tension = o.eps_c.mean > 0.0;
+    // Step 2: curvature on the base mesh (boundary vertices: 0).
+    let kappa_base: Vec<f64> = if surface_tension {
+        let k = vertex_curvature(base, &state.phi)?;
+        k.kappa.into_iter().map(|k| k.unwrap_or(0.0)).collect()
+    } else {
+        vec![0.0; nb]
+    };
+    // Step 3: fit, interpolate κ, T and the previous velocity onto the fitted mesh.
+    let max_phi = state.phi.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
+    let fit_opts = FitOptions {
+        iso: 0.0,
+        snap: if max_phi > 0.0 {
+            (o.snap_distance / max_phi).max(1e-12)
+        } else {
+            1e-12
+        },
+    };
+    let fm = fit(base, &state.phi, &fit_opts)?;
+    let m = &fm.mesh;
+    let n = m.n_points();
+    let mut on = vec![false; n];
+    for [a, b] in fm.interface_edges() {
+        on[a as usize] = true;
+        on[b as usize] = true;
+    }
+    for (flag, &u) in on.iter_mut().zip(&fm.u) {
+        if u == 0.0 {
+            *flag = true;
+        }
+    }
+    let kappa = fm.extend_from_base(&kappa_base)?;
+    let v_old = fm.extend_from_base(&state.velocity)?;
+    let temp = fm.extend_from_base(&state.temperature)?;
+    let normals = interface_normals(&fm, &on);
+    // Step 4: the heat step with the Gibbs–Thomson values (6.2).
+    let t_new = state.time + o.dt;
+    let mut fixed = on.clone();
+    let mut values = vec![0.0; n];
+    let mut max_t_gamma = 0.0f64;
+    for v in 0..n {
+        if on[v] {
+            let theta = normals[v].y.atan2(normals[v].x);
+            values[v] = -o.eps_c.value(theta) * kappa[v] - o.eps_v.value(theta) * v_old[v];
+            max_t_gamma = max_t_gamma.max(values[v].abs());
+        }
+    }
+    if let Some(bc) = o.boundary {
+        for (v, &b) in m.boundary_vertex_flags().iter().enumerate() {
+            if b && !on[v] {
+                fixed[v] = true;
+                values[v] = bc(m.points[v], t_new);
+            }
+        }
+    }
+    let (temp, cg) = heat_step(m, &fixed, &values, &temp, o.dt)?;
+    // Step 5: the Stefan condition (6.4).
+    let vn = stefan_velocity(m, REF_INSIDE, &on, &normals, &temp)?;
+    let iface: Vec<usize> = (0..n).filter(|&v| on[v]).collect();
+    let max_vn = iface.iter().fold(0.0f64, |a, &v| a.max(vn[v].abs()));
+    // Steps 6–7: extension, unrefinement.
+    let (velocity, unknowns) = match o.extension {
+        VelocityExtension::Averaged { smoothing } => {
+            (averaged_extension(&fm, &iface, &vn, o.band, smoothing), 0)
+        }
+        kind => {
+            let opts = ExtensionOptions {
+                kind: if kind == VelocityExtension::Harmonic {
+                    ExtensionKind::Harmonic
+                } else {
+                    ExtensionKind::LeastSquares
+                },
+                band: Some(o.band),
+            };
+            let e = extend_velocity(&fm, &vn, &on, &opts)?;
+            (e.values[..fm.n_base_vertices].to_vec(), e.unknowns)
+        }
+    };
+    // Steps 8–9: move the level set in the band, redistance.
+    let mut phi = fm.u[..fm.n_base_vertices].to_vec();
+    for (p, &v) in phi.iter_mut().zip(&velocity) {
+        if p.abs() <= o.band {
+            *p -= o.dt * v;
+        }
+    }
+    let mut redistanced = redistance_geometric(base, &phi)?;
+    if o.keep_interface {
+        for t in base.live_tris() {
+            for i in 0..3 {
+                let [a, b] = base.edge_vertices(t, i);
+                let (a, b) = (a as usize, b as usize);
+                if phi[a] * phi[b] <= 0.0 {
+                    redistanced[a] = phi[a];
+                    redistanced[b] = phi[b];
+                }
+            }
+        }
+    }
+    state.phi = redistanced;
     state.temperature = fm.restrict_to_base(&temp)?;
+    state.velocity = velocity;
     state.time = t_new;
     Ok(StefanStepReport {
         fitted_vertices: n,
         max_vn,
         cg_iterations: cg.iterations,
+        extension_unknowns: unknowns,
+        max_interface_temperature: max_t_gamma,
     })
 }
 

@@ -1,12 +1,14 @@
 //! Frank's expanding circle (S0 = 1.56) in (−2, 2)² from t0 = 0.25 (R = S0 √t0 = 0.78) to t1:
 //! the Stefan loop of [`anisomesh::backends::fitted::stefan_step`] on uniform n × n base meshes
-//! with Δt ≈ 0.2 h (velocity extension averaged over 3 h), the temperature initialised from the exact solution and held at the exact
+//! with Δt ≈ 0.2 h (a chosen velocity extension), the temperature initialised from the exact solution and held at the exact
 //! value on the outer boundary (Dirichlet). Reported per mesh: the mean and largest
 //! `||p| − R(t)|` over the interface vertices and `|√(A/π) − R(t)|` at t1, with the observed order
 //! between successive meshes; the radius against time for the figure.
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
-use anisomesh::backends::fitted::{circle_deviation, stefan_step, StefanState};
+use anisomesh::backends::fitted::{
+    circle_deviation, stefan_step, StefanOptions, StefanState, VelocityExtension,
+};
 use anisomesh::error::{Error, Result};
 use anisomesh::flows::stefan::FrankCircle;
 use anisomesh::geom::DVec2;
@@ -51,7 +53,7 @@ pub struct FrankRow {
 }
 
 /// Runs one mesh.
-pub fn run_one(n: usize, t1: f64) -> Result<FrankRow> {
+pub fn run_one(n: usize, t1: f64, extension: VelocityExtension) -> Result<FrankRow> {
     if n < 4 || !(t1.is_finite() && t1 > T0) {
         return Err(Error::InvalidInput(format!(
             "Frank's circle: need n >= 4 and a finite end time above {T0} (got n = {n}, t1 = {t1})"
@@ -69,21 +71,23 @@ pub fn run_one(n: usize, t1: f64) -> Result<FrankRow> {
     let steps = ((t1 - T0) / (0.2 * h)).ceil() as usize;
     let dt = (t1 - T0) / steps as f64;
     let r0 = fc.radius(T0);
-    let mut state = StefanState {
-        phi: base.points.iter().map(|p| p.length() - r0).collect(),
-        temperature: base
-            .points
+    let mut state = StefanState::new(
+        base.points.iter().map(|p| p.length() - r0).collect(),
+        base.points
             .iter()
             .map(|p| fc.temperature(p.length(), T0))
             .collect(),
-        time: T0,
-    };
+        T0,
+    );
     let bc = |p: DVec2, t: f64| fc.temperature(p.length(), t);
+    let mut opts = StefanOptions::new(dt, h);
+    opts.extension = extension;
+    opts.boundary = Some(&bc);
     let start = Instant::now();
     let (mut fitted, mut cg, mut max_vn) = (0usize, 0usize, 0.0);
     let mut history = vec![(T0, circle_deviation(&base, &state.phi, r0)?.2)];
     for _ in 0..steps {
-        let rep = stefan_step(&base, &mut state, dt, 3.0 * h, 3.0 * h, Some(&bc))?;
+        let rep = stefan_step(&base, &mut state, &opts)?;
         fitted = fitted.max(rep.fitted_vertices);
         cg += rep.cg_iterations;
         max_vn = rep.max_vn;
@@ -109,10 +113,10 @@ pub fn run_one(n: usize, t1: f64) -> Result<FrankRow> {
 }
 
 /// Runs the refinement table; fills the observed orders.
-pub fn run(ns: &[usize], t1: f64) -> Result<Vec<FrankRow>> {
+pub fn run(ns: &[usize], t1: f64, extension: VelocityExtension) -> Result<Vec<FrankRow>> {
     let mut rows: Vec<FrankRow> = Vec::new();
     for &n in ns {
-        let mut row = run_one(n, t1)?;
+        let mut row = run_one(n, t1, extension)?;
         if let Some(prev) = rows.last() {
             row.order =
                 (prev.radius_error / row.radius_error).ln() / (n as f64 / prev.n as f64).ln();

@@ -1,11 +1,17 @@
-//! The pentagon seed of 001 §6 without surface tension (ε_C = ε_V = 0): (−1.5, 1.5)², a uniform
-//! base mesh (128 × 128 cells, 129² vertices), Δt = 2.5e-4 to t = 0.4, initial temperature 0 in
-//! the solid and −½ in the liquid (6.5)–(6.6), insulated walls (6.3). The seed's size is not
-//! given in 001; here it is the regular pentagon of circumradius 0.1 centred at the origin with a
-//! vertex on the positive y axis.
+//! The solidification cases of 001 §6: a seed in an undercooled liquid, initial temperature 0
+//! in the solid and −½ in the liquid (6.5)–(6.6), insulated walls (6.3), 128 × 128 cells
+//! (129² base vertices).
+//! - pentagon (001 Figs. 6.1–6.3): (−1.5, 1.5)², Δt = 2.5e-4 to t = 0.4, ε_V = 0 and ε_C = 0,
+//!   0.001 or 0.001 (8/3) sin⁴(2(θ − 45°)). The seed's size is not given in 001; here it is the
+//!   regular pentagon of circumradius 0.1 centred at the origin, a vertex on the positive y axis.
+//! - star (001 Fig. 6.4): (−1, 1)², Δt = 1e-4, ε_C = ε_V = 0.001 [1 − cos 4(θ + θ₀)]. The
+//!   eight-sided star is `r < 0.2 (1 + 0.25 cos 8θ)` (its size is not given in 001 either).
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
-use anisomesh::backends::fitted::{fit, stefan_step, FitOptions, StefanState};
+use anisomesh::backends::fitted::{
+    fit, stefan_step, FitOptions, StefanOptions, StefanState, VelocityExtension,
+};
+use anisomesh::backends::fitted::{Anisotropy, Coefficient};
 use anisomesh::error::{Error, Result};
 use anisomesh::geom::DVec2;
 use anisomesh::io::atomic_write;
@@ -17,6 +23,41 @@ use std::time::Instant;
 
 /// Circumradius of the pentagon seed.
 pub const SEED_RADIUS: f64 = 0.1;
+/// Mean radius of the star seed.
+pub const STAR_RADIUS: f64 = 0.2;
+/// Relative amplitude of the star's eight arms.
+pub const STAR_AMPLITUDE: f64 = 0.25;
+
+/// The seed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Seed {
+    /// Regular pentagon in (−1.5, 1.5)².
+    Pentagon,
+    /// Eight-armed star in (−1, 1)².
+    Star,
+}
+
+/// A run of one case.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// The seed (and domain).
+    pub seed: Seed,
+    /// Cells per side.
+    pub n: usize,
+    /// Time step.
+    pub dt: f64,
+    /// End time.
+    pub t_end: f64,
+    /// Surface tension `ε_C(θ)`.
+    pub eps_c: Coefficient,
+    /// Kinetic coefficient `ε_V(θ)`.
+    pub eps_v: Coefficient,
+    /// Velocity extension.
+    pub extension: VelocityExtension,
+    /// Number of snapshot intervals.
+    pub snapshots: usize,
+}
 
 /// A snapshot of the run.
 #[derive(Debug, Clone, Serialize)]
@@ -27,12 +68,18 @@ pub struct Snapshot {
     pub step: usize,
     /// Solid area.
     pub area: f64,
+    /// Interface length.
+    pub interface_length: f64,
     /// Vertices of the fitted mesh.
     pub fitted_vertices: usize,
     /// Largest `|v_n|` of the last step.
     pub max_vn: f64,
-    /// CG iterations of the last step.
+    /// Largest `|T|` on the interface of the last step (Gibbs–Thomson).
+    pub max_interface_temperature: f64,
+    /// CG iterations of the last heat step.
     pub cg_iterations: usize,
+    /// Unknowns of the last velocity extension.
+    pub extension_unknowns: usize,
     /// Interface vertex positions.
     #[serde(skip)]
     pub interface: Vec<(f64, f64)>,
@@ -40,108 +87,167 @@ pub struct Snapshot {
 
 /// The report of [`run`].
 #[derive(Debug, Clone, Serialize)]
-pub struct PentagonReport {
+pub struct PaperReport {
+    /// The seed.
+    pub case: Seed,
     /// Cells per side.
     pub n: usize,
     /// Time step.
     pub dt: f64,
     /// End time.
     pub t_end: f64,
-    /// Wall time, seconds.
+    /// Steps.
+    pub steps: usize,
+    /// `ε_C` as text.
+    pub eps_c: String,
+    /// `ε_V` as text.
+    pub eps_v: String,
+    /// The velocity extension.
+    pub extension: String,
+    /// Wall time of the loop, seconds.
     pub seconds: f64,
-    /// Snapshots at t = 0 and at `snapshots` equal intervals.
+    /// Snapshots at t = 0 and at equal intervals.
     pub snapshots: Vec<Snapshot>,
+}
+
+/// `ε` as text.
+pub fn describe(c: &Coefficient) -> String {
+    match c.anisotropy {
+        Anisotropy::Isotropic => format!("{}", c.mean),
+        Anisotropy::Sin4 { phase } => {
+            format!("{} (8/3) sin^4(2(theta - {}°))", c.mean, phase.to_degrees())
+        }
+        Anisotropy::Cos4 { phase } => {
+            format!("{} [1 - cos 4(theta + {}°)]", c.mean, phase.to_degrees())
+        }
+    }
 }
 
 fn snapshot(
     base: &Mesh2,
     st: &StefanState,
     step: usize,
-    last: (usize, f64, usize),
+    last: Option<&anisomesh::backends::fitted::StefanStepReport>,
 ) -> Result<Snapshot> {
     let fm = fit(base, &st.phi, &FitOptions::default())?;
-    let mut interface = Vec::new();
-    for [a, _] in fm.interface_edges() {
-        let p = fm.mesh.points[a as usize];
-        interface.push((p.x, p.y));
-    }
+    let interface = fm
+        .interface_edges()
+        .into_iter()
+        .map(|[a, _]| {
+            let p = fm.mesh.points[a as usize];
+            (p.x, p.y)
+        })
+        .collect();
     Ok(Snapshot {
         time: st.time,
         step,
         area: fm.area_inside(),
-        fitted_vertices: last.0.max(fm.mesh.n_points()),
-        max_vn: last.1,
-        cg_iterations: last.2,
+        interface_length: fm.interface_length(),
+        fitted_vertices: last.map_or(fm.mesh.n_points(), |r| r.fitted_vertices),
+        max_vn: last.map_or(0.0, |r| r.max_vn),
+        max_interface_temperature: last.map_or(0.0, |r| r.max_interface_temperature),
+        cg_iterations: last.map_or(0, |r| r.cg_iterations),
+        extension_unknowns: last.map_or(0, |r| r.extension_unknowns),
         interface,
     })
 }
 
-/// Runs the pentagon case on an n × n base mesh with time step `dt` to `t_end`.
-pub fn run(n: usize, dt: f64, t_end: f64, snapshots: usize) -> Result<PentagonReport> {
-    if n < 8 || !(dt.is_finite() && dt > 0.0) || !(t_end.is_finite() && t_end > 0.0) {
-        return Err(Error::InvalidInput(format!(
-            "pentagon: need n >= 8, dt > 0 and t_end > 0, finite (got {n}, {dt}, {t_end})"
-        )));
-    }
+/// The base mesh and initial level set (signed distance, negative in the seed) of `seed`.
+pub fn initial(seed: Seed, n: usize) -> Result<(Mesh2, Vec<f64>)> {
+    let half = match seed {
+        Seed::Pentagon => 1.5,
+        Seed::Star => 1.0,
+    };
     let base = Mesh2::rectangle(
-        DVec2::new(-1.5, -1.5),
-        DVec2::new(1.5, 1.5),
+        DVec2::new(-half, -half),
+        DVec2::new(half, half),
         n,
         n,
         GridPattern::UnionJack,
     )?;
-    let corners: Vec<DVec2> = (0..5)
-        .map(|k| {
-            let a = std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * k as f64 / 5.0;
-            SEED_RADIUS * DVec2::new(a.cos(), a.sin())
-        })
-        .collect();
-    // Largest signed distance to the edge lines: negative exactly inside the convex pentagon.
-    let phi0: Vec<f64> = base
-        .points
-        .iter()
-        .map(|&p| {
-            (0..5).fold(f64::NEG_INFINITY, |m, k| {
-                let (a, b) = (corners[k], corners[(k + 1) % 5]);
-                let e = (b - a).normalize();
-                let outward = DVec2::new(e.y, -e.x);
-                m.max((p - a).dot(outward))
+    let phi0: Vec<f64> = match seed {
+        Seed::Pentagon => {
+            let corners: Vec<DVec2> = (0..5)
+                .map(|k| {
+                    let a =
+                        std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * k as f64 / 5.0;
+                    SEED_RADIUS * DVec2::new(a.cos(), a.sin())
+                })
+                .collect();
+            // Largest signed distance to the edge lines: negative exactly inside the pentagon.
+            base.points
+                .iter()
+                .map(|&p| {
+                    (0..5).fold(f64::NEG_INFINITY, |m, k| {
+                        let (a, b) = (corners[k], corners[(k + 1) % 5]);
+                        let e = (b - a).normalize();
+                        m.max((p - a).dot(DVec2::new(e.y, -e.x)))
+                    })
+                })
+                .collect()
+        }
+        Seed::Star => base
+            .points
+            .iter()
+            .map(|p| {
+                let th = p.y.atan2(p.x);
+                p.length() - STAR_RADIUS * (1.0 + STAR_AMPLITUDE * (8.0 * th).cos())
             })
-        })
-        .collect();
+            .collect(),
+    };
     let phi = redistance_geometric(&base, &phi0)?;
+    Ok((base, phi))
+}
+
+/// Runs a case.
+pub fn run(c: &Case) -> Result<PaperReport> {
+    let (n, dt, t_end) = (c.n, c.dt, c.t_end);
+    if n < 8 || !(dt.is_finite() && dt > 0.0) || !(t_end.is_finite() && t_end > 0.0) {
+        return Err(Error::InvalidInput(format!(
+            "stefan: need n >= 8, dt > 0 and t_end > 0, finite (got {n}, {dt}, {t_end})"
+        )));
+    }
+    let (base, phi) = initial(c.seed, n)?;
     let temperature = phi
         .iter()
         .map(|&f| if f < 0.0 { 0.0 } else { -0.5 })
         .collect();
-    let mut st = StefanState {
-        phi,
-        temperature,
-        time: 0.0,
+    let mut st = StefanState::new(phi, temperature, 0.0);
+    let width = match c.seed {
+        Seed::Pentagon => 3.0,
+        Seed::Star => 2.0,
     };
-    let h = 3.0 / n as f64;
+    let h = width / n as f64;
+    let mut opts = StefanOptions::new(dt, h);
+    opts.extension = c.extension;
+    opts.eps_c = c.eps_c;
+    opts.eps_v = c.eps_v;
     let steps = (t_end / dt).round().max(1.0) as usize;
-    let every = (steps / snapshots.max(1)).max(1);
+    let every = (steps / c.snapshots.max(1)).max(1);
     let start = Instant::now();
-    let mut snaps = vec![snapshot(&base, &st, 0, (0, 0.0, 0))?];
+    let mut snaps = vec![snapshot(&base, &st, 0, None)?];
     for k in 1..=steps {
-        let rep = stefan_step(&base, &mut st, dt, 3.0 * h, 3.0 * h, None)?;
+        let rep = stefan_step(&base, &mut st, &opts)?;
         if k % every == 0 || k == steps {
-            let last = (rep.fitted_vertices, rep.max_vn, rep.cg_iterations);
-            snaps.push(snapshot(&base, &st, k, last)?);
+            snaps.push(snapshot(&base, &st, k, Some(&rep))?);
         }
     }
-    Ok(PentagonReport {
+    Ok(PaperReport {
+        case: c.seed,
         n,
         dt,
         t_end,
+        steps,
+        eps_c: describe(&c.eps_c),
+        eps_v: describe(&c.eps_v),
+        extension: format!("{:?}", c.extension),
         seconds: start.elapsed().as_secs_f64(),
         snapshots: snaps,
     })
 }
 
-/// Writes `stefan.json` and `figures/pentagon.png` (the interface at the snapshot times).
-pub fn write(dir: &Path, rep: &PentagonReport) -> Result<()> {
+/// Writes `stefan.json` and `figures/<name>.png` (the interface at the snapshot times).
+pub fn write(dir: &Path, name: &str, rep: &PaperReport) -> Result<()> {
     let figs = dir.join("figures");
     std::fs::create_dir_all(&figs).map_err(|e| Error::Io {
         path: figs.clone(),
@@ -161,9 +267,12 @@ pub fn write(dir: &Path, rep: &PentagonReport) -> Result<()> {
         })
         .collect();
     lines_png(
-        &figs.join("pentagon.png"),
+        &figs.join(format!("{name}.png")),
         &LinesPlot {
-            title: "Pentagon seed, no surface tension: interface at several times".into(),
+            title: format!(
+                "{:?} seed, eps_C = {}, eps_V = {}: interface at several times",
+                rep.case, rep.eps_c, rep.eps_v
+            ),
             x_label: "x".into(),
             y_label: "y".into(),
             series,
