@@ -19,6 +19,8 @@ const L_MAX: f64 = std::f64::consts::SQRT_2;
 
 /// Adaptive Simpson on `[a, b]` to absolute tolerance `tol`.
 fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
+    // The classic recursion carries the end and middle values down.
+    #[allow(clippy::too_many_arguments)]
     fn rec(
         f: &dyn Fn(f64) -> f64,
         a: f64,

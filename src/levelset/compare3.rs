@@ -89,14 +89,14 @@ impl<'a> TetLocator<'a> {
         let mut best: Option<(u32, [f64; 4])> = None;
         for c in self.tree.locate_all_at_point(q) {
             let b = self.bary(c.data, x);
-            if best.is_none_or(|(_, bb)| min(&b) > min(&bb)) {
+            if best.map_or(true, |(_, bb)| min(&b) > min(&bb)) {
                 best = Some((c.data, b));
             }
         }
-        if best.is_none_or(|(_, b)| min(&b) < -1e-12) {
+        if best.map_or(true, |(_, b)| min(&b) < -1e-12) {
             for c in self.tree.nearest_neighbor_iter(q).take(OUTSIDE_CANDIDATES) {
                 let b = self.bary(c.data, x);
-                if best.is_none_or(|(_, bb)| min(&b) > min(&bb)) {
+                if best.map_or(true, |(_, bb)| min(&b) > min(&bb)) {
                     best = Some((c.data, b));
                 }
             }

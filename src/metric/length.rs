@@ -73,7 +73,7 @@ pub fn geometric_mean_length(la: f64, lb: f64) -> f64 {
 /// along the edge, `1/ℓ(t)`, varies linearly between the ends (as mmg interpolates sizes between
 /// vertices, and as eq. (6)'s sizes grow with the distance outside the band). Between the
 /// harmonic and the geometric mean of `la`, `lb`; `la` when they are equal; evaluated through
-/// `ln_1p`. The rule of [`crate::metric::conformity`] (`docs/tools.md` compares the rules).
+/// `ln_1p`. The rule of [`crate::metric::conformity()`] (`docs/tools.md` compares the rules).
 #[inline]
 pub fn linear_size_length(la: f64, lb: f64) -> f64 {
     if la == lb {
