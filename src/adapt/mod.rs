@@ -59,7 +59,8 @@ pub use driver::{
 pub use params::MetricInterpolation;
 pub use report::{mesh_report, MeshReport};
 pub use run::{
-    metric_file_options, run, AdaptTarget, Adapted, RunOptions, RunReport, DEFAULT_MAX_VERTICES,
+    final_metric, level_set_metric, metric_file_options, run, AdaptTarget, Adapted, RunOptions,
+    RunReport, DEFAULT_MAX_VERTICES,
 };
 pub use shape::{adapt_mesh_to_shape, adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};

@@ -202,16 +202,14 @@ pub fn run(target: AdaptTarget, opts: &RunOptions) -> Result<Adapted> {
                 ..ShapeAdaptOptions::default()
             };
             let (mesh, u, rep) = adapt_mesh_to_shape(shape.mesh(), &shape, &so)?;
-            let metric = final_metric(&shape, &mesh, &so)?;
+            let metric = final_metric(&shape, &mesh, opts)?;
             let source = describe(opts, "of the distance to the input's zero level");
             let shape: Box<dyn Shape> = Box::new(shape);
             (mesh, metric, Some(u), Some(shape), rep, source, estimated)
         }
         AdaptTarget::LevelSet { mut mesh, u } => {
-            let mut metric = match opts.target_vertices {
-                Some(n) => hessian_metric(opts, n).field(&mesh, &u)?,
-                None => lm.field_from_p1(&mesh, &u)?,
-            };
+            // The Hessian metric (`target_vertices` is set here).
+            let mut metric = level_set_metric(&mesh, &u, None, opts)?;
             let estimated = estimate::field_vertices(&mesh, &metric);
             refuse_above(estimated, opts.max_vertices)?;
             let mut fields = vec![u];
@@ -379,7 +377,7 @@ fn adapt_shape(
                 ..ShapeAdaptOptions::default()
             };
             let (mesh, u, rep) = adapt_to_shape(shape, domain, &so)?;
-            let metric = final_metric(shape, &mesh, &so)?;
+            let metric = final_metric(shape, &mesh, opts)?;
             Ok((mesh, metric, u, rep, describe(opts, "exact derivatives")))
         }
         Some(n) => {
@@ -405,17 +403,48 @@ fn adapt_shape(
     }
 }
 
-/// The metric the last round of a shape adaptation adapted to, at the final vertices.
-fn final_metric(shape: &dyn Shape, mesh: &Mesh2, so: &ShapeAdaptOptions) -> Result<Vec<Sym2>> {
+/// The metric a shape adaptation of [`run`] adapts to, at the vertices of `mesh`: 004 eq. (6)
+/// of `opts.metric` with the shape's distance, normal and Hessian at every vertex
+/// ([`AnalyticLevelSetSource::evaluate`]), graded as the adaptation rounds grade it
+/// ([`ShapeAdaptOptions::gradation`], default factor 2). [`run`] returns this metric on the
+/// adapted mesh for shape and level-set targets (without `target_vertices`); on the input mesh
+/// of a level-set target it is the metric of the first round.
+pub fn final_metric(shape: &dyn Shape, mesh: &Mesh2, opts: &RunOptions) -> Result<Vec<Sym2>> {
     let src = AnalyticLevelSetSource::new(
         |p| (shape.distance(p), shape.gradient(p), shape.hessian(p)),
-        so.metric,
+        opts.metric,
     );
     let (mut metric, _) = src.evaluate(mesh);
-    if let Some(beta) = so.gradation {
+    if let Some(beta) = ShapeAdaptOptions::default().gradation {
         gradate(mesh, &mut metric, beta)?;
     }
     Ok(metric)
+}
+
+/// The metric [`run`] adapts the P1 level set `u` on `mesh` to ([`AdaptTarget::LevelSet`]), at
+/// the vertices of `at` (`None`: of `mesh`, the metric of the first round): [`final_metric`] of
+/// the input's zero level (the exact distance to the P1 zero level, its normal, and the shape
+/// operator of the Hessian recovered by least squares, 004 §2.2, §4.3), evaluated in the input
+/// mesh; [`run`] returns it with `at` = the adapted mesh. With `opts.target_vertices`, the
+/// multiscale L2 Hessian metric of `u` on `mesh` ([`HessianMetric::field`]; `at` must be
+/// `None`). Errors: an invalid mesh or field, no zero level, invalid options.
+pub fn level_set_metric(
+    mesh: &Mesh2,
+    u: &[f64],
+    at: Option<&Mesh2>,
+    opts: &RunOptions,
+) -> Result<Vec<Sym2>> {
+    match (opts.target_vertices, at) {
+        (Some(n), None) => hessian_metric(opts, n).field(mesh, u),
+        (Some(_), Some(_)) => Err(Error::Unsupported(
+            "the Hessian metric of a level set lives on the level set's own mesh".into(),
+        )),
+        (None, _) => {
+            opts.metric.validate()?;
+            let shape = DiscreteLevelSet::new(mesh.clone(), u.to_vec())?;
+            final_metric(&shape, at.unwrap_or(mesh), opts)
+        }
+    }
 }
 
 fn metric_only_report(mesh: &Mesh2, metric: &[Sym2]) -> MeshReport {

@@ -26,9 +26,9 @@ pub struct ZeroLevelComparison {
     pub from_reference_max: f64,
     /// `max` of the two: the sampled Hausdorff distance.
     pub hausdorff: f64,
-    /// Area of `{v < 0}` on the measured mesh.
+    /// Area of `{v < 0}` on the measured mesh (volume in 3D, [`super::compare3`]).
     pub area: f64,
-    /// Area of `{u < 0}` on the reference mesh.
+    /// Area of `{u < 0}` on the reference mesh (volume in 3D).
     pub reference_area: f64,
     /// `|area - reference_area| / reference_area`.
     pub relative_area_error: f64,

@@ -4,6 +4,7 @@
 
 mod arcpoly;
 pub mod compare;
+pub mod compare3;
 pub mod expr;
 pub mod interface;
 pub mod measure;

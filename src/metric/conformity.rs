@@ -2,8 +2,10 @@
 //! statistics used to compare meshes from different adaptors on equal terms (004 §3.3–3.4; the
 //! UGAWG measures in 3D).
 //!
-//! - **Edge lengths** in the metric with [`edge_length`] (geometric interpolation of the length
-//!   density between the end metrics) or, for an analytic metric, integrated along the edge
+//! - **Edge lengths** in the metric from the end metrics with the size varying linearly along
+//!   the edge ([`linear_size_length`] of `ℓ_a = |e|_{M_a}`, `ℓ_b = |e|_{M_b}`; against an
+//!   integration of the analytic metric it is the most faithful of the vertex rules compared in
+//!   `tests/metric_length_rules.rs`) or, for an analytic metric, integrated along the edge
 //!   ([`conformity_analytic`]): share in `[1/√2, √2]`, min, max, mean and a histogram with
 //!   bounds [`LENGTH_BINS`] (powers of `√2`, so the unit interval is two bins).
 //! - **`Q_ani`** (004 §3.4) of each cell in its log-Euclidean element metric ([`q_ani`] in
@@ -19,7 +21,7 @@
 
 use rayon::prelude::*;
 
-use super::length::{edge_length, element_metric, q_ani, Q_ANI_BINS};
+use super::length::{element_metric, linear_size_length, q_ani, Q_ANI_BINS};
 use super::length::{L_MAX, L_MIN};
 use super::SymTensor;
 use crate::error::{Error, Result};
@@ -150,7 +152,7 @@ fn check_inputs<const D: usize, const N: usize, S: SymTensor<D>>(
 
 /// Edge-length, `Q_ani` and mean-ratio statistics of the simplices `cells` over `points`
 /// (triangles over `DVec2` with `Sym2`, tetrahedra over `DVec3` with `Sym3`) in the vertex metric
-/// field `metric`; edge lengths by [`edge_length`] from the end metrics. Runs in parallel; the
+/// field `metric`; edge lengths by [`linear_size_length`] from the end metrics. Runs in parallel; the
 /// result does not depend on the thread count.
 ///
 /// Errors: [`Error::InvalidField`] if `metric` does not have one tensor per point,
@@ -167,7 +169,8 @@ pub fn conformity<const D: usize, const N: usize, S: SymTensor<D>>(
         .par_iter()
         .map(|&[a, b]| {
             let (a, b) = (a as usize, b as usize);
-            edge_length(points[a], points[b], &metric[a], &metric[b])
+            let e = points[b] - points[a];
+            linear_size_length(metric[a].quad(e).sqrt(), metric[b].quad(e).sqrt())
         })
         .collect();
     Ok(summarise(points, cells, metric, &lengths))
@@ -197,9 +200,9 @@ pub fn integrated_length<const D: usize, S: SymTensor<D>>(
 
 /// [`conformity`] in an analytic metric field `metric(x)`: edge lengths integrated along each
 /// edge ([`integrated_length`]), element statistics in the metric at the vertices. Use it when
-/// the metric is known everywhere: the end-point formula of [`edge_length`] assumes the size
-/// varies geometrically along the edge, which misjudges edges across fast-varying metrics (a
-/// layer, a strong gradation) by several per cent (see `docs/tools.md`).
+/// the metric is known everywhere: a rule from the end metrics ([`conformity`]) cannot see a
+/// metric's variation between the vertices (a layer, a kink of the distance), which misjudges
+/// edges there (see `docs/tools.md`).
 ///
 /// Errors as [`conformity`] (for the metric at the vertices).
 pub fn conformity_analytic<const D: usize, const N: usize, S: SymTensor<D>>(

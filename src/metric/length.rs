@@ -69,6 +69,24 @@ pub fn geometric_mean_length(la: f64, lb: f64) -> f64 {
     lo * x / x.ln_1p()
 }
 
+/// `∫_0^1 dt / ((1-t)/la + t/lb) = la lb ln(la/lb) / (la - lb)`: the edge length when the size
+/// along the edge, `1/ℓ(t)`, varies linearly between the ends (as mmg interpolates sizes between
+/// vertices, and as eq. (6)'s sizes grow with the distance outside the band). Between the
+/// harmonic and the geometric mean of `la`, `lb`; `la` when they are equal; evaluated through
+/// `ln_1p`. The rule of [`crate::metric::conformity()`] (`docs/tools.md` compares the rules).
+#[inline]
+pub fn linear_size_length(la: f64, lb: f64) -> f64 {
+    if la == lb {
+        return la;
+    }
+    if la == 0.0 || lb == 0.0 {
+        return 0.0;
+    }
+    let (lo, hi) = if la < lb { (la, lb) } else { (lb, la) };
+    let x = hi / lo - 1.0;
+    hi * x.ln_1p() / x
+}
+
 /// `Q_ani` of the simplex `p` (triangle or tetrahedron) in the metric `m` (004 §3.4):
 /// `α_d (Σ_i e_i^T m e_i)^{d/2} / (|K| sqrt(det m))` over the edges `e_i`, with `α_2 = sqrt(3)/12`
 /// and `α_3 = sqrt(3)/216`. Equals 1 for a regular simplex of unit edges in `m`, is larger

@@ -1,11 +1,12 @@
 //! `anisomesh measure MESH [--metric METRIC.sol | --ugawg CASE] [--json]`: how well a triangle or
 //! tetrahedral mesh conforms to a metric — edge lengths in the metric, `Q_ani` and the mean
 //! ratio ([`anisomesh::metric::conformity`]); without a metric, in the Euclidean metric. With
-//! `--against REF.mesh --sol U.sol` (2D), the distance between the zero levels and the area error
-//! ([`anisomesh::levelset::compare`]).
+//! `--against REF.mesh --sol U.sol`, the distance between the zero levels and the area (volume)
+//! error ([`anisomesh::levelset::compare`], [`anisomesh::levelset::compare3`]).
 
 use super::user_files::{read_metric2, read_metric3, read_scalar, read_user_mesh, UserMesh};
 use anisomesh::levelset::compare::{compare_zero_levels, interpolate_p1, ZeroLevelComparison};
+use anisomesh::levelset::compare3::{compare_zero_levels3, interpolate_p1_tets};
 use anisomesh::metric::interpolate_log;
 use anisomesh::metric::ugawg::UgawgCase;
 use anisomesh::metric::{conformity, conformity_analytic, Conformity, Sym2, Sym3};
@@ -31,8 +32,8 @@ pub struct MeasureArgs {
     /// along the edges in it.
     #[arg(long)]
     pub ugawg: Option<String>,
-    /// A reference 2D mesh with its level set (--sol): compare the zero levels (sampled
-    /// Hausdorff distance, enclosed area).
+    /// A reference mesh (2D or 3D, as the measured one) with its level set (--sol): compare
+    /// the zero levels (sampled Hausdorff distance, enclosed area or volume).
     #[arg(long, requires = "sol")]
     pub against: Option<PathBuf>,
     /// The reference level set on --against's vertices (.sol, scalar).
@@ -169,27 +170,46 @@ fn histogram_line(name: &str, h: &[(f64, usize)]) -> String {
     line
 }
 
-/// The zero-level comparison of `--against`, if asked.
+/// The zero-level comparison of `--against`, if asked (2D: [`compare_zero_levels`], 3D:
+/// [`compare_zero_levels3`]).
 fn against(a: &MeasureArgs, mesh: &UserMesh) -> Result<Option<ZeroLevelComparison>> {
     let (Some(r), Some(u_path)) = (&a.against, &a.sol) else {
         return Ok(None);
     };
-    let (UserMesh::Tri { mesh: m, .. }, reference) = (mesh, read_user_mesh(r)?) else {
-        return Err(Error::Unsupported(
-            "--against: the zero-level comparison is 2D only".into(),
-        ));
-    };
+    let reference = read_user_mesh(r)?;
     let u = read_scalar(u_path, &reference)?;
-    let UserMesh::Tri { mesh: rm, .. } = &reference else {
-        return Err(Error::Unsupported(
-            "--against: the zero-level comparison is 2D only".into(),
-        ));
+    let own = match &a.level_set {
+        Some(p) => Some(read_scalar(p, mesh)?),
+        None => None,
     };
-    let v = match &a.level_set {
-        Some(p) => read_scalar(p, mesh)?,
-        None => interpolate_p1(rm, &u, &m.points)?,
-    };
-    Ok(Some(compare_zero_levels(m, &v, rm, &u)?))
+    match (mesh, &reference) {
+        (UserMesh::Tri { mesh: m, .. }, UserMesh::Tri { mesh: rm, .. }) => {
+            let v = match own {
+                Some(v) => v,
+                None => interpolate_p1(rm, &u, &m.points)?,
+            };
+            Ok(Some(compare_zero_levels(m, &v, rm, &u)?))
+        }
+        (
+            UserMesh::Tet { points, cells },
+            UserMesh::Tet {
+                points: rp,
+                cells: rc,
+            },
+        ) => {
+            let v = match own {
+                Some(v) => v,
+                None => interpolate_p1_tets(rp, rc, &u, points)?,
+            };
+            Ok(Some(compare_zero_levels3(points, cells, &v, rp, rc, &u)?))
+        }
+        _ => Err(Error::InvalidInput(format!(
+            "--against {}: a {}D mesh, the measured mesh is {}D",
+            r.display(),
+            reference.dim(),
+            mesh.dim()
+        ))),
+    }
 }
 
 /// Runs `anisomesh measure`.
@@ -221,7 +241,7 @@ pub fn run(a: MeasureArgs) -> Result<()> {
         );
         if let Some(z) = cmp {
             println!(
-                "zero level against {}: Hausdorff {:.3e} (to {:.3e}, from {:.3e}); area {:.10} vs \
+                "zero level against {}: Hausdorff {:.3e} (to {:.3e}, from {:.3e}); {} {:.10} vs \
                  {:.10} (relative error {:.2e})",
                 a.against
                     .as_deref()
@@ -230,6 +250,7 @@ pub fn run(a: MeasureArgs) -> Result<()> {
                 z.hausdorff,
                 z.to_reference_max,
                 z.from_reference_max,
+                if mesh.dim() == 2 { "area" } else { "volume" },
                 z.area,
                 z.reference_area,
                 z.relative_area_error

@@ -3,22 +3,24 @@
 //! triangle or tetrahedral mesh, written as a Medit tensor field (what `mmg2d_O3` / `mmg3d_O3
 //! -in M.mesh -sol METRIC.sol` read).
 //!
-//! Level set → metric: the exact distance to the P1 zero level (004 §2.2), its gradient and
-//! Hessian by least squares (004 §4.3; [`anisomesh::recovery::recover_ls3`] on tetrahedra), then
-//! 004 eq. (6) with the size bounds and the growth outside the band of `adapt`'s
-//! [`LevelSetMetric`] (same defaults, same flags). With `--target-vertices` (2D), `adapt`'s
-//! multiscale L2 Hessian metric ([`HessianMetric`]) of the field itself.
+//! Level set → metric, 2D: the metric `adapt --input M.mesh --sol U.sol` adapts to, evaluated at
+//! the input's vertices by the same library call ([`level_set_metric`]): 004 eq. (6) of the
+//! exact distance to the P1 zero level (004 §2.2), its normal and the shape operator of the
+//! least-squares Hessian (004 §4.3), with `adapt`'s size bounds, band, growth and gradation (same
+//! defaults, same flags); with `--target-vertices`, `adapt`'s multiscale L2 Hessian metric of the
+//! field itself. 3D: the distance's gradient and Hessian by least squares
+//! ([`anisomesh::recovery::recover_ls3`]) in eq. (6) with the same bounds and band.
 
 use super::measure::print_conformity;
 use super::metric_args::MetricArgs;
 use super::user_files::{read_scalar, read_user_mesh, UserMesh};
-use anisomesh::adapt::{HessianMetric, LevelSetMetric};
+use anisomesh::adapt::{level_set_metric, LevelSetMetric, RunOptions};
 use anisomesh::io::{self, Sol};
-use anisomesh::levelset::redistance::{redistance_geometric, redistance_geometric_cells};
+use anisomesh::levelset::redistance::redistance_geometric_cells;
 use anisomesh::levelset::{Expr, Variables};
 use anisomesh::metric::band::{banded_metric, BandedMetric};
 use anisomesh::metric::{complexity, conformity, gradate, predicted_vertices, Sym2, Sym3};
-use anisomesh::recovery::{recover_ls, recover_ls3};
+use anisomesh::recovery::recover_ls3;
 use anisomesh::{Error, Mesh2, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -77,7 +79,8 @@ fn level_set(a: &MetricCmdArgs, mesh: &UserMesh) -> Result<Vec<f64>> {
     Ok(u)
 }
 
-/// The 2D metric field (module documentation).
+/// The 2D metric field: the metric `adapt --input M.mesh --sol U.sol` adapts to, on the input
+/// mesh ([`level_set_metric`]).
 pub fn metric2(
     mesh: &Mesh2,
     u: &[f64],
@@ -85,22 +88,12 @@ pub fn metric2(
     target: Option<usize>,
 ) -> Result<Vec<Sym2>> {
     lm.validate()?;
-    match target {
-        Some(n) => HessianMetric {
-            target_vertices: n,
-            hmin: lm.hmin,
-            hmax: lm.hmax,
-            ..HessianMetric::default()
-        }
-        .field(mesh, u),
-        None => {
-            let d = redistance_geometric(mesh, u)?;
-            let rec = recover_ls(mesh, &d)?;
-            Ok((0..d.len())
-                .map(|v| lm.metric(d[v], rec.gradient[v], &rec.hessian[v]))
-                .collect())
-        }
-    }
+    let opts = RunOptions {
+        metric: *lm,
+        target_vertices: target,
+        ..RunOptions::default()
+    };
+    level_set_metric(mesh, u, None, &opts)
 }
 
 /// The 3D metric field (module documentation).
