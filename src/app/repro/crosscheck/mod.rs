@@ -16,6 +16,8 @@ mod problems;
 pub mod table41;
 
 use crate::app::plot::{loglog_png, LogLogPlot, Series};
+use anisomesh::backends::dtgrid::DtGridBackend;
+use anisomesh::backends::fitted::FittedBackend;
 use anisomesh::backends::{AdaptedBackend, BuildSpec, LevelSetBackend, D2, D3};
 use anisomesh::error::{Error, Result};
 use serde::Serialize;
@@ -38,7 +40,6 @@ pub fn entry2<B: LevelSetBackend<D2> + 'static>(name: &'static str) -> (&'static
 }
 
 /// The 3D back end `B` with its default options, as a [`Build3`] entry.
-#[allow(dead_code)] // used once a 3D back end is listed
 pub fn entry3<B: LevelSetBackend<D3> + 'static>(name: &'static str) -> (&'static str, Build3) {
     (
         name,
@@ -49,13 +50,16 @@ pub fn entry3<B: LevelSetBackend<D3> + 'static>(name: &'static str) -> (&'static
 /// The 2D level-set back ends the cross-check runs (the circle, the curvatures, Zalesak):
 /// adding one is one line here.
 pub fn level_set_backends() -> Vec<(&'static str, Build2)> {
-    vec![entry2::<AdaptedBackend>("adapted")]
+    vec![
+        entry2::<AdaptedBackend>("adapted"),
+        entry2::<FittedBackend>("fitted"),
+    ]
 }
 
 /// The 3D level-set back ends the cross-check runs on the shrinking sphere, beside the
 /// parametric surfaces: adding one is one line here.
 pub fn level_set_backends_3d() -> Vec<(&'static str, Build3)> {
-    Vec::new()
+    vec![entry3::<DtGridBackend>("dtgrid")]
 }
 
 /// How much to run.
