@@ -11,6 +11,7 @@
 //! integrals, signed distance).
 
 mod band;
+pub mod distance;
 pub mod fem;
 pub mod grid;
 pub mod heat;
