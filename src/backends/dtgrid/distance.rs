@@ -180,11 +180,11 @@ fn trilinear(v: &[f64; 8], p0: DVec3, h: f64, q: DVec3) -> (f64, DVec3) {
     (val, g)
 }
 
-/// `(distance, |cos| of the offset with the normal, side)` of `p` to triangle `t`.
-fn to_triangle(lat: &Lattice, l: &Level, p: DVec3, t: u32) -> (f64, f64, f64) {
+/// `(distance, |cos| of the offset with the normal, side)` of `p` to the triangle `t` itself.
+fn to_triangle(l: &Level, p: DVec3, t: u32) -> (f64, f64, f64) {
     let pts = &l.surface.points;
     let [a, b, c] = l.surface.triangles[t as usize].map(|k| pts[k as usize]);
-    let mut q = closest_on_triangle(p, a, b, c);
+    let q = closest_on_triangle(p, a, b, c);
     let n = (b - a).cross(c - a);
     let s = (p - q).dot(n);
     let d0 = (p - q).length();
@@ -193,9 +193,15 @@ fn to_triangle(lat: &Lattice, l: &Level, p: DVec3, t: u32) -> (f64, f64, f64) {
     } else {
         0.0
     };
-    q = l.project(lat, t, q);
-    let d = (p - q).length();
-    (d, cos, if s < 0.0 { -1.0 } else { 1.0 })
+    (d0, cos, if s < 0.0 { -1.0 } else { 1.0 })
+}
+
+/// The distance of `p` to the trilinear zero level near triangle `t`: the closest point on the
+/// triangle projected onto it.
+fn to_level(lat: &Lattice, l: &Level, p: DVec3, t: u32) -> f64 {
+    let pts = &l.surface.points;
+    let [a, b, c] = l.surface.triangles[t as usize].map(|k| pts[k as usize]);
+    (p - l.project(lat, t, closest_on_triangle(p, a, b, c))).length()
 }
 
 /// Calls `f(i, nbrs)` for every node `i` of the sorted coordinates `coords` (in parallel chunks)
@@ -288,7 +294,7 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             seed[i] = true;
             let p = lat.pos(coords[i]);
             for t in start..tri {
-                let (d, _, _) = to_triangle(lat, &l, p, t as u32);
+                let (d, _, _) = to_triangle(&l, p, t as u32);
                 if d < dist[i] {
                     dist[i] = d;
                     best[i] = t as u32;
@@ -316,7 +322,7 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             }
             let mut b = (f64::INFINITY, 0.0f64, 1.0f64, NONE);
             for &t in &cand[..nc] {
-                let (d, cos, s) = to_triangle(lat, &l, p, t);
+                let (d, cos, s) = to_triangle(&l, p, t);
                 let tie = (d - b.0).abs() <= 1e-12 * lat.h;
                 if d < b.0 - 1e-12 * lat.h || (tie && (cos > b.1 || (cos == b.1 && t < b.3))) {
                     b = (d, cos, s, t);
@@ -337,6 +343,13 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             break;
         }
     }
+    let dist: Vec<f64> = (0..coords.len())
+        .into_par_iter()
+        .map(|i| match best[i] {
+            NONE => f64::INFINITY,
+            t => to_level(lat, &l, lat.pos(coords[i]), t),
+        })
+        .collect();
     // The crossing corners: the field times the least-squares factor that fits it to the
     // distances over the crossing corners of the 3³ neighbourhood (the zero level stays put to
     // within the variation of the factor; the gradient is renormalised).

@@ -3,7 +3,8 @@
 //! values on its boundary layer (000 (2.12)). With more than one solve per step this is the
 //! nested inner iteration of 000 §2.4: after each solve the band is rebuilt around the new zero
 //! level, the new iterate is replaced by its signed distance on the new band (the next Dirichlet
-//! data), `Φ^k` is extended onto the new band (old values kept, new nodes by the signed distance
+//! data; on the corners of the crossed cells the iterate itself, renormalised, so redistancing
+//! does not move the zero level — see [`super::distance`]), `Φ^k` is extended onto the new band (old values kept, new nodes by the signed distance
 //! to its zero level), and the step is solved again, until the band stops changing and the
 //! boundary data change by less than `δ`. With one solve the Dirichlet data are `Φ^k` itself
 //! (the scheme "without inner iterations"). After each step `Φ^{k+1}` is a signed distance
