@@ -3,7 +3,8 @@
 //! values on its boundary layer (000 (2.12)). With more than one solve per step this is the
 //! nested inner iteration of 000 §2.4: after each solve the band is rebuilt around the new zero
 //! level, the new iterate is replaced by its signed distance on the new band (the next Dirichlet
-//! data), `Φ^k` is extended onto the new band (old values kept, new nodes by the signed distance
+//! data; on the corners of the crossed cells the iterate itself, renormalised, so redistancing
+//! does not move the zero level — see [`super::distance`]), `Φ^k` is extended onto the new band (old values kept, new nodes by the signed distance
 //! to its zero level), and the step is solved again, until the band stops changing and the
 //! boundary data change by less than `δ`. With one solve the Dirichlet data are `Φ^k` itself
 //! (the scheme "without inner iterations"). After each step `Φ^{k+1}` is a signed distance
@@ -11,10 +12,10 @@
 //! conditions take one solve per step on the band of `Φ^k`.
 
 use super::band::Band;
+use super::distance::{extend_distance, zero_level_integral, Keep};
 use super::fem::{assemble, elements, transparent_vector, Weight};
 use super::lattice::{band_around, crossing_cells_of_band, Lattice, NarrowBand, C3};
 use super::scheme::{solve_all, solve_dirichlet, system_matrix, Bc};
-use super::surface::{signed_distance, zero_level};
 use crate::error::{Error, Result};
 use std::time::Instant;
 
@@ -87,13 +88,7 @@ fn extend<B: Band<Coord = C3>>(
     to: &B,
     shells: i32,
 ) -> Vec<f64> {
-    let z = zero_level(lat, from, phi);
-    let old: Vec<Option<usize>> = to.coords().map(|c| from.index(c)).collect();
-    let d = signed_distance(lat, to, &z, shells, |i| old[i].map(|k| phi[k]));
-    d.iter()
-        .zip(&old)
-        .map(|(d, o)| o.map_or(*d, |k| phi[k]))
-        .collect()
+    extend_distance(lat, from, phi, to, Keep::OldBand, shells as f64 * lat.h)
 }
 
 /// The band of half-width `j` around the zero level of `phi` on `nb` and the signed distance to
@@ -105,6 +100,16 @@ pub fn rebuild<B: Band<Coord = C3>>(
     nb: &NarrowBand<B>,
     phi: &[f64],
 ) -> Result<(NarrowBand<B>, Vec<f64>)> {
+    rebuild_keeping(lat, nb, phi, Keep::Nothing)
+}
+
+/// [`rebuild`], keeping the values of `phi` where `keep` says.
+pub fn rebuild_keeping<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    nb: &NarrowBand<B>,
+    phi: &[f64],
+    keep: Keep,
+) -> Result<(NarrowBand<B>, Vec<f64>)> {
     let cross = crossing_cells_of_band(&nb.band, phi);
     let new: NarrowBand<B> = band_around(lat, &cross, nb.j).map_err(|e| match e {
         Error::EmptyLevelSet(_) => Error::EmptyLevelSet(
@@ -112,9 +117,14 @@ pub fn rebuild<B: Band<Coord = C3>>(
         ),
         e => e,
     })?;
-    let z = zero_level(lat, &nb.band, phi);
-    let old: Vec<Option<usize>> = new.band.coords().map(|c| nb.band.index(c)).collect();
-    let d = signed_distance(lat, &new.band, &z, shells(nb.j), |i| old[i].map(|k| phi[k]));
+    let d = extend_distance(
+        lat,
+        &nb.band,
+        phi,
+        &new.band,
+        keep,
+        shells(nb.j) as f64 * lat.h,
+    );
     Ok((new, d))
 }
 
@@ -181,7 +191,7 @@ impl<B: Band<Coord = C3> + Clone> McfState<B> {
             rep.solves += 1;
             rep.times.solve += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            let (new_nb, new_approx) = rebuild(&lat, &nb, &x)?;
+            let (new_nb, new_approx) = rebuild_keeping(&lat, &nb, &x, Keep::Crossing)?;
             let same =
                 new_nb.band.len() == nb.band.len() && new_nb.band.coords().eq(nb.band.coords());
             let change = new_nb
@@ -207,16 +217,14 @@ impl<B: Band<Coord = C3> + Clone> McfState<B> {
         Ok(rep)
     }
 
-    /// The area-weighted mean of `g(x)` over the zero level (e.g. `||x| − r|` for a sphere).
+    /// The area-weighted mean of `g(x)` over the zero level (e.g. `||x| − r|` for a sphere),
+    /// quadrature points on the trilinear zero level.
     /// Error: [`Error::EmptyLevelSet`] when the zero level is empty.
     pub fn surface_mean(&self, g: impl Fn(crate::geom::DVec3) -> f64) -> Result<f64> {
-        let z = zero_level(&self.lat, &self.nb.band, &self.phi);
-        let area = z.surface.area();
+        let (area, s) = zero_level_integral(&self.lat, &self.nb.band, &self.phi, g);
         if area.is_nan() || area <= 0.0 {
             return Err(Error::EmptyLevelSet("the zero level has no area".into()));
         }
-        let s =
-            super::surface::surface_integral(&self.lat, &self.nb.band, &z, &self.phi, |x, _| g(x));
         Ok(s / area)
     }
 }

@@ -14,6 +14,7 @@
 
 pub mod backend;
 mod band;
+pub mod distance;
 pub mod fem;
 pub mod grid;
 pub mod heat;

@@ -1,0 +1,435 @@
+//! The signed distance extension of 000 §2.4 computed in storage order: the distance of every
+//! node of a new band to the zero level of a Q1 band field, by closest-triangle propagation
+//! through the `3³` neighbourhoods of the band (no hashing, no random access).
+//!
+//! The zero level is cut into triangles by marching tetrahedra. The corners of the crossed cells
+//! (`I¹`) take the nearest triangle of their own cells; then, layer by layer, every node takes the
+//! nearest among the triangles its `26` neighbours found (a Jacobi pass over the band in storage
+//! order, with one forward cursor per neighbouring grid column). The closest point on the triangle
+//! is projected by Newton's method onto the zero level of the trilinear interpolant in the
+//! triangle's cell, so the distance is measured to the zero level the finite elements see, not
+//! to its chords (the chords of a convex surface lie inside it by `O(h²κ)`; measuring to them
+//! shifts the zero level by that much at every redistancing).
+
+use super::band::{Band, GridCoord};
+use super::lattice::{crosses, Lattice, C3};
+use crate::geom::DVec3;
+use crate::levelset::TriangleSurface;
+use rayon::prelude::*;
+
+/// The Kuhn tetrahedra of a cube: corners `0, 2^a, 2^a + 2^b, 7` for each axis order `(a, b)`.
+const KUHN: [[usize; 4]; 6] = [
+    [0, 1, 3, 7],
+    [0, 1, 5, 7],
+    [0, 2, 3, 7],
+    [0, 2, 6, 7],
+    [0, 4, 5, 7],
+    [0, 4, 6, 7],
+];
+
+const NONE: u32 = u32::MAX;
+
+/// Which values of the field are kept on the new band instead of the distance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Keep {
+    /// None: the signed distance everywhere (signs from the field where the node is in the old
+    /// band).
+    Nothing,
+    /// The corners of the crossed cells (`I¹`): the zero level of the field is not moved.
+    Crossing,
+    /// Every node of the old band (the extension of `Φ^k` in 000 §2.4).
+    OldBand,
+}
+
+/// The triangles of the zero level with the corner values of their cells.
+struct Level {
+    surface: TriangleSurface,
+    /// Per triangle: its cell.
+    tri_cell: Vec<u32>,
+    /// Per crossed cell: lowest corner, corner values.
+    cells: Vec<(C3, [f64; 8])>,
+}
+
+fn level<B: Band<Coord = C3>>(lat: &Lattice, band: &B, phi: &[f64]) -> Level {
+    let mut l = Level {
+        surface: TriangleSurface::default(),
+        tri_cell: Vec::new(),
+        cells: Vec::new(),
+    };
+    for (c, idx) in band.cells() {
+        let v: [f64; 8] = std::array::from_fn(|k| phi[idx[k] as usize]);
+        if !crosses(&v) {
+            continue;
+        }
+        let p0 = lat.pos(c);
+        let before = l.surface.triangles.len();
+        for t in KUHN {
+            let pts = t.map(|k| p0 + lat.h * corner_offset(k));
+            l.surface.add_tet_zero_level(pts, t.map(|k| v[k]));
+        }
+        let id = l.cells.len() as u32;
+        l.tri_cell
+            .extend(std::iter::repeat(id).take(l.surface.triangles.len() - before));
+        l.cells.push((c, v));
+    }
+    l
+}
+
+impl Level {
+    /// `q` moved by two Newton steps onto the trilinear zero level of the cell of triangle `t`.
+    fn project(&self, lat: &Lattice, t: u32, mut q: DVec3) -> DVec3 {
+        let (c0, v) = &self.cells[self.tri_cell[t as usize] as usize];
+        let p0 = lat.pos(*c0);
+        for _ in 0..2 {
+            let (f, g) = trilinear(v, p0, lat.h, q);
+            let g2 = g.length_squared();
+            if g2 <= 1e-300 {
+                break;
+            }
+            let step = g * (f / g2);
+            if step.length() > 0.5 * lat.h {
+                break;
+            }
+            q -= step;
+        }
+        q
+    }
+}
+
+/// The area of the zero level of the band field `phi` and the integral of `g` over it: the
+/// marching-tetrahedra triangles with a three-point rule whose points are projected onto the
+/// trilinear zero level of their cells (the chords of a curved zero level lie `O(h²κ)` off it,
+/// which would bias a radius measured on them).
+pub fn zero_level_integral<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    band: &B,
+    phi: &[f64],
+    g: impl Fn(DVec3) -> f64,
+) -> (f64, f64) {
+    let l = level(lat, band, phi);
+    let pts = &l.surface.points;
+    let (mut area, mut total) = (0.0, 0.0);
+    for (t, tri) in l.surface.triangles.iter().enumerate() {
+        let [a, b, c] = tri.map(|k| pts[k as usize]);
+        let ar = 0.5 * (b - a).cross(c - a).length();
+        area += ar;
+        for (wa, wb, wc) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
+            let x = l.project(lat, t as u32, (wa * a + wb * b + wc * c) / 6.0);
+            total += ar / 3.0 * g(x);
+        }
+    }
+    (area, total)
+}
+
+fn corner_offset(k: usize) -> DVec3 {
+    DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, (k >> 2) as f64)
+}
+
+/// The closest point to `p` on the triangle `a b c`.
+pub(crate) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + d1 / (d1 - d3) * ab;
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + d2 / (d2 - d6) * ac;
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+/// The trilinear interpolant of the corner values `v` of the cell at `p0` and its gradient at `q`.
+fn trilinear(v: &[f64; 8], p0: DVec3, h: f64, q: DVec3) -> (f64, DVec3) {
+    let xi = (q - p0) / h;
+    let (x, y, z) = (xi.x, xi.y, xi.z);
+    let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
+    // Along x on the four x-edges, then y, then z.
+    let e = [(0, 1), (2, 3), (4, 5), (6, 7)].map(|(a, b)| (lerp(v[a], v[b], x), v[b] - v[a]));
+    let f0 = (
+        lerp(e[0].0, e[1].0, y),
+        lerp(e[0].1, e[1].1, y),
+        e[1].0 - e[0].0,
+    );
+    let f1 = (
+        lerp(e[2].0, e[3].0, y),
+        lerp(e[2].1, e[3].1, y),
+        e[3].0 - e[2].0,
+    );
+    let val = lerp(f0.0, f1.0, z);
+    let g = DVec3::new(lerp(f0.1, f1.1, z), lerp(f0.2, f1.2, z), f1.0 - f0.0) / h;
+    (val, g)
+}
+
+/// `(distance, |cos| of the offset with the normal, side)` of `p` to the triangle `t` itself.
+fn to_triangle(l: &Level, p: DVec3, t: u32) -> (f64, f64, f64) {
+    let pts = &l.surface.points;
+    let [a, b, c] = l.surface.triangles[t as usize].map(|k| pts[k as usize]);
+    let q = closest_on_triangle(p, a, b, c);
+    let n = (b - a).cross(c - a);
+    let s = (p - q).dot(n);
+    let d0 = (p - q).length();
+    let cos = if d0 > 0.0 && n.length() > 0.0 {
+        (s / (d0 * n.length())).abs()
+    } else {
+        0.0
+    };
+    (d0, cos, if s < 0.0 { -1.0 } else { 1.0 })
+}
+
+/// The distance of `p` to the trilinear zero level near triangle `t`: the closest point on the
+/// triangle projected onto it.
+fn to_level(lat: &Lattice, l: &Level, p: DVec3, t: u32) -> f64 {
+    let pts = &l.surface.points;
+    let [a, b, c] = l.surface.triangles[t as usize].map(|k| pts[k as usize]);
+    (p - l.project(lat, t, closest_on_triangle(p, a, b, c))).length()
+}
+
+/// Calls `f(i, nbrs)` for every node `i` of the sorted coordinates `coords` (in parallel chunks)
+/// with the indices of its `3³` neighbours (`NONE` where absent), found by one forward cursor per
+/// neighbouring column.
+fn neighbourhoods<T: Send>(coords: &[C3], f: impl Fn(usize, &[u32; 27]) -> T + Sync) -> Vec<T> {
+    const CHUNK: usize = 1 << 14;
+    let chunks: Vec<usize> = (0..coords.len()).step_by(CHUNK).collect();
+    let parts: Vec<Vec<T>> = chunks
+        .par_iter()
+        .map(|&start| {
+            let end = (start + CHUNK).min(coords.len());
+            let first = coords[start];
+            let mut cur = [0usize; 9];
+            for (k, cur) in cur.iter_mut().enumerate() {
+                let t = [
+                    first[0] + (k % 3) as i32 - 1,
+                    first[1] + (k / 3) as i32 - 1,
+                    first[2] - 1,
+                ];
+                *cur = coords.partition_point(|c| *c < t);
+            }
+            let mut out = Vec::with_capacity(end - start);
+            let mut nb = [NONE; 27];
+            for (i, &c) in coords.iter().enumerate().take(end).skip(start) {
+                for (k, cur) in cur.iter_mut().enumerate() {
+                    let (x, y) = (c[0] + (k % 3) as i32 - 1, c[1] + (k / 3) as i32 - 1);
+                    let t0 = [x, y, c[2] - 1];
+                    while *cur < coords.len() && coords[*cur] < t0 {
+                        *cur += 1;
+                    }
+                    let mut q = *cur;
+                    for dz in 0..3 {
+                        let t = [x, y, c[2] + dz as i32 - 1];
+                        while q < coords.len() && coords[q] < t {
+                            q += 1;
+                        }
+                        let hit = q < coords.len() && coords[q] == t;
+                        nb[dz * 9 + k] = if hit { q as u32 } else { NONE };
+                    }
+                }
+                out.push(f(i, &nb));
+            }
+            out
+        })
+        .collect();
+    parts.into_iter().flatten().collect()
+}
+
+/// The values on `to` of the band field `phi` on `from`: the signed distance to the zero level of
+/// `phi` (the trilinear zero level in the cells it crosses), except where `keep` keeps `phi`.
+/// Signs come from `phi` where the node is in `from`, else from the side of the nearest
+/// triangle. Nodes farther than `max_dist` (or not reached) get `±max_dist`.
+pub fn extend_distance<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    from: &B,
+    phi: &[f64],
+    to: &B,
+    keep: Keep,
+    max_dist: f64,
+) -> Vec<f64> {
+    let l = level(lat, from, phi);
+    let coords: Vec<C3> = to.coords().collect();
+    let old_coords: Vec<C3> = from.coords().collect();
+    // The old value of every new node, by one merge of the two sorted lists.
+    let mut old: Vec<Option<f64>> = vec![None; coords.len()];
+    let mut k = 0;
+    for (i, c) in coords.iter().enumerate() {
+        while k < old_coords.len() && old_coords[k] < *c {
+            k += 1;
+        }
+        if k < old_coords.len() && old_coords[k] == *c {
+            old[i] = Some(phi[k]);
+        }
+    }
+    // Seeds: the corners of the crossed cells take the nearest triangle of their cells.
+    let mut best = vec![NONE; coords.len()];
+    let mut dist = vec![f64::INFINITY; coords.len()];
+    let mut seed = vec![false; coords.len()];
+    let mut tri = 0usize;
+    for (id, (c, _)) in l.cells.iter().enumerate() {
+        let start = tri;
+        while tri < l.tri_cell.len() && l.tri_cell[tri] == id as u32 {
+            tri += 1;
+        }
+        for corner in 0..8 {
+            let Some(i) = to.index(GridCoord::corner(*c, corner)) else {
+                continue;
+            };
+            seed[i] = true;
+            let p = lat.pos(coords[i]);
+            for t in start..tri {
+                let (d, _, _) = to_triangle(&l, p, t as u32);
+                if d < dist[i] {
+                    dist[i] = d;
+                    best[i] = t as u32;
+                }
+            }
+        }
+    }
+    // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes).
+    let layers = (max_dist / lat.h).ceil() as usize + 1;
+    let mut side = vec![1.0f64; coords.len()];
+    for pass in 0..layers {
+        let res = neighbourhoods(&coords, |i, nb| {
+            let p = lat.pos(coords[i]);
+            let mut cand = [NONE; 28];
+            let mut nc = 0;
+            for &j in nb.iter().chain(std::iter::once(&(i as u32))) {
+                if j == NONE {
+                    continue;
+                }
+                let t = best[j as usize];
+                if t != NONE && !cand[..nc].contains(&t) {
+                    cand[nc] = t;
+                    nc += 1;
+                }
+            }
+            let mut b = (f64::INFINITY, 0.0f64, 1.0f64, NONE);
+            for &t in &cand[..nc] {
+                let (d, cos, s) = to_triangle(&l, p, t);
+                let tie = (d - b.0).abs() <= 1e-12 * lat.h;
+                if d < b.0 - 1e-12 * lat.h || (tie && (cos > b.1 || (cos == b.1 && t < b.3))) {
+                    b = (d, cos, s, t);
+                }
+            }
+            b
+        });
+        let mut changed = false;
+        for (i, (d, _, s, t)) in res.into_iter().enumerate() {
+            if t != best[i] {
+                changed = true;
+            }
+            best[i] = t;
+            dist[i] = d;
+            side[i] = s;
+        }
+        if !changed && pass > 0 {
+            break;
+        }
+    }
+    let dist: Vec<f64> = (0..coords.len())
+        .into_par_iter()
+        .map(|i| match best[i] {
+            NONE => f64::INFINITY,
+            t => to_level(lat, &l, lat.pos(coords[i]), t),
+        })
+        .collect();
+    // The crossing corners: the field times the least-squares factor that fits it to the
+    // distances over the crossing corners of the 3³ neighbourhood (the zero level stays put to
+    // within the variation of the factor; the gradient is renormalised).
+    let scale: Vec<f64> = if keep == Keep::Crossing {
+        neighbourhoods(&coords, |i, nb| {
+            if !seed[i] {
+                return 1.0;
+            }
+            let (mut num, mut den) = (0.0, 0.0);
+            for &k in nb.iter() {
+                if k == NONE || !seed[k as usize] {
+                    continue;
+                }
+                if let Some(x) = old[k as usize] {
+                    num += dist[k as usize].min(max_dist) * x.abs();
+                    den += x * x;
+                }
+            }
+            if den > 0.0 && num > 0.0 {
+                num / den
+            } else {
+                1.0
+            }
+        })
+    } else {
+        vec![1.0; coords.len()]
+    };
+    (0..coords.len())
+        .map(|i| {
+            let kept = match keep {
+                Keep::Nothing => None,
+                Keep::Crossing => seed[i].then(|| old[i].map(|x| x * scale[i])).flatten(),
+                Keep::OldBand => old[i],
+            };
+            if let Some(v) = kept {
+                return v;
+            }
+            let s = match old[i] {
+                Some(v) if v < 0.0 => -1.0,
+                Some(_) => 1.0,
+                None => side[i],
+            };
+            s * dist[i].min(max_dist)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backends::dtgrid::lattice::{band_around, crossing_cells_of_fn, NarrowBand};
+    use crate::backends::dtgrid::DtGrid;
+
+    #[test]
+    fn sphere_distance_and_kept_zero_level() {
+        let lat = Lattice::unit(33).unwrap();
+        let r = 0.27;
+        let f = |p: DVec3| p.length() - r;
+        let cross = crossing_cells_of_fn(&lat, &f).unwrap();
+        let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, 2).unwrap();
+        // A field that is not a distance (gradient 2|x|).
+        let phi: Vec<f64> = nb
+            .band
+            .coords()
+            .map(|c| lat.pos(c).length_squared() - r * r)
+            .collect();
+        let d = extend_distance(&lat, &nb.band, &phi, &nb.band, Keep::Nothing, 8.0 * lat.h);
+        for (c, di) in nb.band.coords().zip(&d) {
+            let e = f(lat.pos(c));
+            // The trilinear zero level lies within 3h²/(8r) of the sphere.
+            assert!((di - e).abs() < lat.h * lat.h / r, "{c:?} {di} {e}");
+        }
+        // Keeping the crossing corners keeps every sign, so the zero level does not move.
+        let k = extend_distance(&lat, &nb.band, &phi, &nb.band, Keep::Crossing, 8.0 * lat.h);
+        for ((a, b), e) in phi.iter().zip(&k).zip(&d) {
+            assert_eq!(*a < 0.0, *b < 0.0);
+            assert!((b - e).abs() < 0.6 * lat.h, "{b} {e}");
+        }
+        let (area, _) = zero_level_integral(&lat, &nb.band, &k, |_| 1.0);
+        let exact = 4.0 * std::f64::consts::PI * r * r;
+        assert!((area / exact - 1.0).abs() < 0.01);
+    }
+}
