@@ -22,8 +22,9 @@ pub use interface::{
 pub use measure::{enclosed_measure, interface_measure};
 pub use radial::{icosphere, radial_surface, torus_surface};
 pub use shapes::{
-    nodal_distance, shape_by_name, Ball, Circle, Difference, Flower, Intersection, Normalized,
-    Rotated, Shape, ShapePoint, Sphere, StarSurface, Torus, Union, Zalesak, SHAPE_NAMES,
+    nodal_distance, normalized_distance, shape_by_name, Ball, Circle, Difference, Flower,
+    Intersection, Normalized, Rotated, Shape, ShapePoint, Sphere, StarSurface, Torus, Union,
+    Zalesak, SHAPE_NAMES,
 };
 pub use surface::TriangleSurface;
 pub use triangulated::TriangulatedShape;

@@ -17,7 +17,7 @@ mod torus;
 
 pub use ball::{Ball, Circle, Sphere};
 pub use csg::{Difference, Intersection, Rotated, Union};
-pub use normalized::Normalized;
+pub use normalized::{normalized_distance, Normalized};
 pub use space::ShapePoint;
 pub use star::StarSurface;
 pub use torus::Torus;

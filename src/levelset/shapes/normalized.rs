@@ -26,22 +26,31 @@ pub struct Normalized<S> {
     pub cap: f64,
 }
 
+/// `f(p)/|∇f(p)|` clipped to `±cap` (`±cap` where `∇f` vanishes): the value of [`Normalized`]
+/// for a borrowed function.
+pub fn normalized_distance<S: Shape + ?Sized>(f: &S, p: DVec2, cap: f64) -> f64 {
+    clipped_quotient(f.distance(p), f.gradient(p).length(), cap)
+}
+
+fn clipped_quotient(f: f64, len: f64, cap: f64) -> f64 {
+    let d = if len > 0.0 {
+        f / len
+    } else {
+        f64::INFINITY * f.signum()
+    };
+    if d.is_nan() {
+        0.0
+    } else {
+        d.clamp(-cap, cap)
+    }
+}
+
 impl<S: Shape> Normalized<S> {
     /// `f / |∇f|` clipped to `±cap`, the unit normal (zero where `∇f = 0`), and the shape operator.
     fn parts(&self, p: DVec2) -> (f64, DVec2, Sym2) {
-        let f = self.inner.distance(p);
         let g = self.inner.gradient(p);
         let len = g.length();
-        let d = if len > 0.0 {
-            f / len
-        } else {
-            f64::INFINITY * f.signum()
-        };
-        let d = if d.is_nan() {
-            0.0
-        } else {
-            d.clamp(-self.cap, self.cap)
-        };
+        let d = clipped_quotient(self.inner.distance(p), len, self.cap);
         if !(len > 0.0 && len.is_finite()) {
             return (d, DVec2::ZERO, Sym2::scalar(0.0));
         }
