@@ -9,7 +9,7 @@
 //! `VertexOnGeometricEdge`, ...) are skipped.
 
 use super::atomic::atomic_write;
-use super::tokens::{fmt_f64, read_text, shorten, Tokens};
+use super::tokens::{read_text, shorten, Out, Tokens};
 use super::validate::{build_mesh, RawEdge, RawMesh2};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
@@ -377,17 +377,31 @@ pub fn read_medit3(path: &Path) -> Result<Medit3> {
 /// Writes the Medit text of a 2D mesh: live triangles, every boundary edge and every labelled
 /// interior edge in `Edges`, `Corners` and `RequiredVertices`.
 pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
-    writeln!(w, "MeshVersionFormatted 2\n\nDimension 2\n")?;
-    writeln!(w, "Vertices\n{}", mesh.points.len())?;
+    let mut o = Out::new(w);
+    o.text("MeshVersionFormatted 2\n\nDimension 2\n\nVertices\n");
+    o.int(mesh.points.len());
+    o.text("\n");
     for (v, p) in mesh.points.iter().enumerate() {
-        let r = mesh.vert_ref.get(v).copied().unwrap_or(0);
-        writeln!(w, "{} {} {r}", fmt_f64(p.x), fmt_f64(p.y))?;
+        o.real(p.x);
+        o.text(" ");
+        o.real(p.y);
+        o.text(" ");
+        o.int(mesh.vert_ref.get(v).copied().unwrap_or(0));
+        o.line()?;
     }
     let live: Vec<usize> = mesh.live_tris().collect();
-    writeln!(w, "\nTriangles\n{}", live.len())?;
+    o.text("\nTriangles\n");
+    o.int(live.len());
+    o.text("\n");
     for &t in &live {
         let [a, b, c] = mesh.tris[t];
-        writeln!(w, "{} {} {} {}", a + 1, b + 1, c + 1, mesh.tri_ref[t])?;
+        o.ints(&[
+            a as i64 + 1,
+            b as i64 + 1,
+            c as i64 + 1,
+            mesh.tri_ref[t] as i64,
+        ]);
+        o.line()?;
     }
     let edges: Vec<[u32; 3]> = mesh
         .edges()
@@ -401,9 +415,12 @@ pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
             })
         })
         .collect();
-    writeln!(w, "\nEdges\n{}", edges.len())?;
+    o.text("\nEdges\n");
+    o.int(edges.len());
+    o.text("\n");
     for [a, b, label] in edges {
-        writeln!(w, "{} {} {}", a + 1, b + 1, label as i32)?;
+        o.ints(&[a as i64 + 1, b as i64 + 1, label as i32 as i64]);
+        o.line()?;
     }
     for (name, flags) in [
         ("Corners", &mesh.corner),
@@ -411,13 +428,19 @@ pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
     ] {
         let list: Vec<usize> = (0..flags.len()).filter(|&v| flags[v]).collect();
         if !list.is_empty() {
-            writeln!(w, "\n{name}\n{}", list.len())?;
+            o.text("\n");
+            o.text(name);
+            o.text("\n");
+            o.int(list.len());
+            o.text("\n");
             for v in list {
-                writeln!(w, "{}", v + 1)?;
+                o.int(v + 1);
+                o.line()?;
             }
         }
     }
-    writeln!(w, "\nEnd")
+    o.text("\nEnd\n");
+    o.finish()
 }
 
 /// Writes a 2D mesh as Medit `.mesh` (atomically).
@@ -438,21 +461,37 @@ pub fn write_medit3(path: &Path, m: &Medit3) -> Result<()> {
         )));
     }
     atomic_write(path, |w| {
-        writeln!(w, "MeshVersionFormatted 2\n\nDimension 3\n")?;
-        writeln!(w, "Vertices\n{}", m.points.len())?;
-        for (p, r) in m.points.iter().zip(&m.point_ref) {
-            writeln!(w, "{} {} {} {r}", fmt_f64(p.x), fmt_f64(p.y), fmt_f64(p.z))?;
+        let mut o = Out::new(w);
+        o.text("MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n");
+        o.int(m.points.len());
+        o.text("\n");
+        for (p, &r) in m.points.iter().zip(&m.point_ref) {
+            for x in [p.x, p.y, p.z] {
+                o.real(x);
+                o.text(" ");
+            }
+            o.int(r);
+            o.line()?;
         }
-        writeln!(w, "\nTetrahedra\n{}", m.tets.len())?;
-        for (t, r) in m.tets.iter().zip(&m.tet_ref) {
-            writeln!(w, "{} {} {} {} {r}", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1)?;
+        o.text("\nTetrahedra\n");
+        o.int(m.tets.len());
+        o.text("\n");
+        for (t, &r) in m.tets.iter().zip(&m.tet_ref) {
+            let [a, b, c, d] = t.map(|v| v as i64 + 1);
+            o.ints(&[a, b, c, d, r as i64]);
+            o.line()?;
         }
         if !m.tris.is_empty() {
-            writeln!(w, "\nTriangles\n{}", m.tris.len())?;
-            for (t, r) in m.tris.iter().zip(&m.tri_ref) {
-                writeln!(w, "{} {} {} {r}", t[0] + 1, t[1] + 1, t[2] + 1)?;
+            o.text("\nTriangles\n");
+            o.int(m.tris.len());
+            o.text("\n");
+            for (t, &r) in m.tris.iter().zip(&m.tri_ref) {
+                let [a, b, c] = t.map(|v| v as i64 + 1);
+                o.ints(&[a, b, c, r as i64]);
+                o.line()?;
             }
         }
-        writeln!(w, "\nEnd")
+        o.text("\nEnd\n");
+        o.finish()
     })
 }

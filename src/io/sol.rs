@@ -7,7 +7,7 @@
 
 use super::atomic::atomic_write;
 use super::medit::{is_keyword, read_header_keyword, skip_section};
-use super::tokens::{fmt_f64, read_text, shorten, Tokens};
+use super::tokens::{read_text, shorten, Out, Tokens};
 use crate::error::{Error, Result};
 use crate::metric::{Sym2, Sym3};
 use std::path::Path;
@@ -288,28 +288,33 @@ pub fn write_sol(path: &Path, sol: &Sol) -> Result<()> {
     check_sol(path, sol)?;
     let n = sol.n_vertices();
     atomic_write(path, |w| {
-        writeln!(w, "MeshVersionFormatted 2\n\nDimension {}\n", sol.dim)?;
-        write!(w, "SolAtVertices\n{n}\n{}", sol.fields.len())?;
+        let mut o = Out::new(w);
+        o.text("MeshVersionFormatted 2\n\nDimension ");
+        o.int(sol.dim);
+        o.text("\n\nSolAtVertices\n");
+        o.int(n);
+        o.text("\n");
+        o.int(sol.fields.len());
         for f in &sol.fields {
-            write!(w, " {}", f.type_code())?;
+            o.text(" ");
+            o.int(f.type_code());
         }
-        writeln!(w)?;
+        o.line()?;
         let mut vals = Vec::with_capacity(16);
-        let mut line = String::with_capacity(128);
         for v in 0..n {
             vals.clear();
             for f in &sol.fields {
                 f.push_values(v, sol.dim, &mut vals);
             }
-            line.clear();
             for (k, x) in vals.iter().enumerate() {
                 if k > 0 {
-                    line.push(' ');
+                    o.text(" ");
                 }
-                line.push_str(&fmt_f64(*x));
+                o.real(*x);
             }
-            writeln!(w, "{line}")?;
+            o.line()?;
         }
-        writeln!(w, "\nEnd")
+        o.text("\nEnd\n");
+        o.finish()
     })
 }

@@ -191,11 +191,98 @@ pub(crate) fn shorten(t: &str) -> String {
 /// Formats a float so that it reads back exactly (shortest round-trip form) and is accepted by C
 /// `strtod`/`fscanf` (plain decimal for moderate magnitudes, exponent form otherwise).
 pub(crate) fn fmt_f64(x: f64) -> String {
+    let mut b = Vec::with_capacity(32);
+    push_f64(&mut b, x);
+    // Only ASCII digits, signs, '.' and 'e' are written.
+    String::from_utf8(b).unwrap_or_default()
+}
+
+/// Appends [`fmt_f64`]'s text of `x` to `buf` without allocating per number: the shortest
+/// round-trip digits (ryu), laid out as Rust's `{x}` for `1e-5 <= |x| < 1e15` and zero, and
+/// as `{x:e}` otherwise: `format!`'s text, except that where two shortest digit strings are
+/// equally close to `x` the last digit may differ (both read back to `x`).
+pub(crate) fn push_f64(buf: &mut Vec<u8>, x: f64) {
     let a = x.abs();
-    if x == 0.0 || (1e-5..1e15).contains(&a) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
+    if !x.is_finite() || (1e15..1e16).contains(&a) {
+        // Not written by the mesh writers (non-finite) or where ryu's layout differs: rare.
+        use std::io::Write;
+        let _ = if x == 0.0 || (1e-5..1e15).contains(&a) {
+            write!(buf, "{x}")
+        } else {
+            write!(buf, "{x:e}")
+        };
+        return;
+    }
+    let mut r = ryu::Buffer::new();
+    let s = r.format_finite(x).as_bytes();
+    // ryu writes integral values as "3.0" and "-0.0"; Rust's Display writes "3" and "-0".
+    let s = s.strip_suffix(b".0").unwrap_or(s);
+    buf.extend_from_slice(s);
+}
+
+/// Appends the decimal text of an integer to `buf` (the same text as `{v}`).
+pub(crate) fn push_int<I: itoa::Integer>(buf: &mut Vec<u8>, v: I) {
+    buf.extend_from_slice(itoa::Buffer::new().format(v).as_bytes());
+}
+
+/// A text writer that formats numbers straight into one byte buffer and hands it to the
+/// underlying writer in large blocks (no allocation per number or per line).
+pub(crate) struct Out<'w> {
+    w: &'w mut dyn std::io::Write,
+    buf: Vec<u8>,
+}
+
+impl<'w> Out<'w> {
+    const BLOCK: usize = 1 << 16;
+
+    /// A buffered text writer over `w`.
+    pub fn new(w: &'w mut dyn std::io::Write) -> Self {
+        Out {
+            w,
+            buf: Vec::with_capacity(Self::BLOCK + 256),
+        }
+    }
+
+    /// Appends text.
+    pub fn text(&mut self, s: &str) {
+        self.buf.extend_from_slice(s.as_bytes());
+    }
+
+    /// Appends a float in [`fmt_f64`]'s form.
+    pub fn real(&mut self, x: f64) {
+        push_f64(&mut self.buf, x);
+    }
+
+    /// Appends an integer.
+    pub fn int<I: itoa::Integer>(&mut self, v: I) {
+        push_int(&mut self.buf, v);
+    }
+
+    /// Appends integers separated by single spaces.
+    pub fn ints(&mut self, vs: &[i64]) {
+        for (k, &v) in vs.iter().enumerate() {
+            if k > 0 {
+                self.buf.push(b' ');
+            }
+            push_int(&mut self.buf, v);
+        }
+    }
+
+    /// Ends a line, passing the buffer on once it holds a full block.
+    pub fn line(&mut self) -> std::io::Result<()> {
+        self.buf.push(b'\n');
+        if self.buf.len() >= Self::BLOCK {
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    /// Writes what remains.
+    pub fn finish(mut self) -> std::io::Result<()> {
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        Ok(())
     }
 }
 
@@ -256,5 +343,83 @@ mod tests {
             assert_eq!(s.parse::<f64>().unwrap(), x, "{s}");
         }
         assert_eq!(fmt_f64(1e-20), "1e-20");
+    }
+
+    /// The buffer writer gives `format!`'s layout and digit count and the same bits back, including
+    /// subnormals, extreme magnitudes, signed zero and the decimal/exponent switch points.
+    #[test]
+    fn push_f64_matches_format_and_round_trips() {
+        let reference = |x: f64| {
+            let a = x.abs();
+            if x == 0.0 || (1e-5..1e15).contains(&a) {
+                format!("{x}")
+            } else {
+                format!("{x:e}")
+            }
+        };
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -3.0,
+            1e-300,
+            -1e300,
+            1e300,
+            f64::MIN_POSITIVE,
+            f64::MIN_POSITIVE / 3.0,
+            5e-324,
+            -5e-324,
+            f64::MAX,
+            f64::MIN,
+            1e-5,
+            9.999999999999999e-6,
+            1e-7,
+            1e15,
+            9.999999999999998e14,
+            1.5e15,
+            1e16,
+            123456.789,
+            0.1 + 0.2,
+        ];
+        // A deterministic spread of bit patterns over the whole finite range.
+        let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..200_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            let x = f64::from_bits(s);
+            if x.is_finite() {
+                xs.push(x);
+            }
+            // Also moderate magnitudes, where the decimal layout applies.
+            xs.push((s >> 11) as f64 / (1u64 << 53) as f64 * 10f64.powi((s % 40) as i32 - 20));
+        }
+        let mut buf = Vec::new();
+        for (x, t) in [
+            (-0.0, "-0"),
+            (1e-7, "1e-7"),
+            (1e15, "1e15"),
+            (2.5, "2.5"),
+            (3.0, "3"),
+        ] {
+            buf.clear();
+            push_f64(&mut buf, x);
+            assert_eq!(std::str::from_utf8(&buf).unwrap(), t);
+        }
+        for x in xs {
+            buf.clear();
+            push_f64(&mut buf, x);
+            let t = std::str::from_utf8(&buf).unwrap();
+            let r = reference(x);
+            assert_eq!(t.len(), r.len(), "{t} vs {r}");
+            assert_eq!(t.contains('e'), r.contains('e'), "{t} vs {r}");
+            let back: f64 = t.parse().unwrap();
+            assert_eq!(back.to_bits(), x.to_bits(), "{t}");
+        }
+        for v in [0i64, 1, -1, 42, i64::MAX, i64::MIN] {
+            buf.clear();
+            push_int(&mut buf, v);
+            assert_eq!(std::str::from_utf8(&buf).unwrap(), v.to_string());
+        }
     }
 }
