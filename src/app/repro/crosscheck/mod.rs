@@ -82,6 +82,15 @@ impl Resolution {
             Resolution::Full => 4,
         }
     }
+
+    /// The number of levels of the 3D level-set back ends on the sphere: two, three for
+    /// [`Resolution::Full`] (the third DT-Grid level, `h = 0.05`, takes minutes).
+    pub fn levels_3d(self) -> usize {
+        match self {
+            Resolution::Full => 3,
+            _ => 2,
+        }
+    }
 }
 
 /// One row of a problem's table.
@@ -182,7 +191,7 @@ pub struct CrossReport {
 pub fn planned_runs(res: Resolution) -> usize {
     let l = res.levels();
     let (n2, n3) = (level_set_backends().len(), level_set_backends_3d().len());
-    3 * l * (n2 + 2) + l * (n3 + 2) + l.min(3) * n2
+    3 * l * (n2 + 2) + res.levels_3d() * n3 + 2 * l + l.min(3) * n2
 }
 
 /// For each pair of back ends in `p` with at least two rows carrying a value: whether their

@@ -107,7 +107,8 @@ pub fn circle_mcf(
 
 /// The sphere shrinking by mean curvature from `R0 = 2` to `T = 0.1` (002): the error of the
 /// averaged radius, parametric P1 and P2 from icosahedral level 2, `τ = 0.02` divided by 4 per
-/// level; the 3D level-set back ends in `[−2.5, 2.5]³` at `h = 0.2 / 2^k` with `τ = h²`, the
+/// level; the 3D level-set back ends in `[−2.5, 2.5]³` at `h = 0.2 / 2^k` with `τ = h²`
+/// ([`Resolution::levels_3d`] levels: a level costs about 8× the one before), the
 /// error of the radius `(3V/4π)^{1/3}` of the enclosed volume.
 pub fn sphere_mcf(
     res: Resolution,
@@ -119,7 +120,7 @@ pub fn sphere_mcf(
     let exact = (r0 * r0 - 4.0 * t_end).sqrt();
     let sphere = move |p: anisomesh::geom::DVec3| p.length() - r0;
     for (name, build) in backends {
-        for k in 0..res.levels() {
+        for k in 0..res.levels_3d() {
             let h = 0.2 / 2f64.powi(k as i32);
             let start = Instant::now();
             let mut b = build(&BuildSpec {
