@@ -13,6 +13,7 @@
 
 use super::band::{Band, GridCoord};
 use super::lattice::{crosses, Lattice, C3};
+use super::surface::closest_on_triangle;
 use crate::geom::DVec3;
 use crate::levelset::TriangleSurface;
 use rayon::prelude::*;
@@ -123,39 +124,6 @@ pub fn zero_level_integral<B: Band<Coord = C3>>(
 
 fn corner_offset(k: usize) -> DVec3 {
     DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, (k >> 2) as f64)
-}
-
-/// The closest point to `p` on the triangle `a b c`.
-pub(crate) fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + d1 / (d1 - d3) * ab;
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + d2 / (d2 - d6) * ac;
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    }
-    let denom = 1.0 / (va + vb + vc);
-    a + ab * (vb * denom) + ac * (vc * denom)
 }
 
 /// The trilinear interpolant of the corner values `v` of the cell at `p0` and its gradient at `q`.
