@@ -185,7 +185,7 @@ pub fn texture(o: &TextureOptions) -> Result<TextureReport> {
     };
     let (va, vb) = (at(&st.a)?, at(&st.b)?);
     io_dir(&o.output)?;
-    write_surface_fields(
+    super::surface_mcf::write_surface_fields(
         &o.output.join("dtgrid_texture.vtu"),
         &surf,
         &[("a", &va), ("b", &vb)],
@@ -385,81 +385,4 @@ pub fn obj_mcf(o: &ObjMcfOptions) -> Result<ObjMcfReport> {
 fn write_json(path: &Path, v: &impl Serialize) -> Result<()> {
     let json = serde_json::to_string_pretty(v).map_err(|e| Error::InvalidInput(e.to_string()))?;
     anisomesh::io::atomic_write(path, |w| w.write_all(json.as_bytes()))
-}
-
-/// Writes a triangle surface with per-vertex fields as a `.vtu` unstructured grid.
-/// Error: [`Error::InvalidField`] for a field of the wrong length or a non-finite value.
-pub fn write_surface_fields(
-    path: &Path,
-    s: &TriangleSurface,
-    fields: &[(&str, &[f64])],
-) -> Result<()> {
-    for (name, f) in fields {
-        if f.len() != s.points.len() || f.iter().any(|v| !v.is_finite()) {
-            return Err(Error::InvalidField {
-                name: (*name).into(),
-                msg: format!(
-                    "{} values for {} vertices, or a non-finite value",
-                    f.len(),
-                    s.points.len()
-                ),
-            });
-        }
-    }
-    anisomesh::io::atomic_write(path, |w| {
-        writeln!(w, "<?xml version=\"1.0\"?>")?;
-        writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">")?;
-        writeln!(w, "<UnstructuredGrid>")?;
-        writeln!(
-            w,
-            "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
-            s.points.len(),
-            s.triangles.len()
-        )?;
-        writeln!(w, "<PointData>")?;
-        for (name, f) in fields {
-            writeln!(
-                w,
-                "<DataArray type=\"Float64\" Name=\"{name}\" format=\"ascii\">"
-            )?;
-            for v in *f {
-                writeln!(w, "{v}")?;
-            }
-            writeln!(w, "</DataArray>")?;
-        }
-        writeln!(w, "</PointData>")?;
-        writeln!(
-            w,
-            "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
-        )?;
-        for p in &s.points {
-            writeln!(w, "{} {} {}", p.x, p.y, p.z)?;
-        }
-        writeln!(w, "</DataArray></Points><Cells>")?;
-        writeln!(
-            w,
-            "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
-        )?;
-        for t in &s.triangles {
-            writeln!(w, "{} {} {}", t[0], t[1], t[2])?;
-        }
-        writeln!(
-            w,
-            "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">"
-        )?;
-        for i in 0..s.triangles.len() {
-            writeln!(w, "{}", 3 * (i + 1))?;
-        }
-        writeln!(
-            w,
-            "</DataArray><DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">"
-        )?;
-        for _ in &s.triangles {
-            writeln!(w, "5")?;
-        }
-        writeln!(
-            w,
-            "</DataArray></Cells></Piece></UnstructuredGrid></VTKFile>"
-        )
-    })
 }

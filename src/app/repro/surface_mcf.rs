@@ -278,6 +278,28 @@ pub fn perturbed_frames(
 
 /// Writes a triangle surface as a `.vtu` unstructured grid (triangles, 3D points).
 pub fn write_surface_vtu(path: &Path, s: &TriangleSurface) -> Result<()> {
+    write_surface_fields(path, s, &[])
+}
+
+/// Writes a triangle surface with per-vertex fields as a `.vtu` unstructured grid.
+/// Error: [`Error::InvalidField`] for a field of the wrong length or a non-finite value.
+pub fn write_surface_fields(
+    path: &Path,
+    s: &TriangleSurface,
+    fields: &[(&str, &[f64])],
+) -> Result<()> {
+    for (name, f) in fields {
+        if f.len() != s.points.len() || f.iter().any(|v| !v.is_finite()) {
+            return Err(Error::InvalidField {
+                name: (*name).into(),
+                msg: format!(
+                    "{} values for {} vertices, or a non-finite value",
+                    f.len(),
+                    s.points.len()
+                ),
+            });
+        }
+    }
     anisomesh::io::atomic_write(path, |w| {
         writeln!(w, "<?xml version=\"1.0\"?>")?;
         writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">")?;
@@ -288,6 +310,22 @@ pub fn write_surface_vtu(path: &Path, s: &TriangleSurface) -> Result<()> {
             s.points.len(),
             s.triangles.len()
         )?;
+        if !fields.is_empty() {
+            writeln!(w, "<PointData>")?;
+        }
+        for (name, f) in fields {
+            writeln!(
+                w,
+                "<DataArray type=\"Float64\" Name=\"{name}\" format=\"ascii\">"
+            )?;
+            for v in *f {
+                writeln!(w, "{v}")?;
+            }
+            writeln!(w, "</DataArray>")?;
+        }
+        if !fields.is_empty() {
+            writeln!(w, "</PointData>")?;
+        }
         writeln!(
             w,
             "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
