@@ -4,40 +4,12 @@
 //! that vanishes during the motion) gives one line and a non-zero exit, never a panic.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn anisomesh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_anisomesh"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn ok(out: &Output) -> String {
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn assert_clean_error(out: &Output, needle: &str) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "expected failure, got success");
-    assert!(!stderr.contains("panicked"), "panic: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
-    assert!(stderr.contains(needle), "'{needle}' not in: {stderr}");
-}
+mod common;
+use common::{anisomesh, assert_clean_error, ok, s, scratch};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("anisomesh-cli-dtgrid-{}", std::process::id()));
-    d.join(name)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch("cli-dtgrid").join(name)
 }
 
 fn json(path: &Path) -> serde_json::Value {

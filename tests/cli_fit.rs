@@ -5,22 +5,9 @@
 use anisomesh::io::{self, Sol};
 use anisomesh::{DVec2, GridPattern, Mesh2};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn anisomesh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_anisomesh"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn assert_clean_error(out: &Output, needle: &str) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "expected failure, got success");
-    assert!(!stderr.contains("panicked"), "panic: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
-    assert!(stderr.contains(needle), "'{needle}' not in: {stderr}");
-}
+mod common;
+use common::{anisomesh, assert_clean_error, s};
 
 fn tmp(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("anisomesh-cli-fit-{}-{name}", std::process::id()));
@@ -36,10 +23,6 @@ fn write_case(dir: &Path, n: usize, f: impl Fn(DVec2) -> f64) -> (PathBuf, PathB
     io::write_mesh(&mp, &m).unwrap();
     io::write_sol(&sp, &Sol::scalar(u)).unwrap();
     (mp, sp, m)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 #[test]

@@ -7,29 +7,12 @@ use anisomesh::io::{self, Medit3, Sol};
 use anisomesh::mesh3::Mesh3;
 use anisomesh::DVec3;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn anisomesh(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_anisomesh"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+mod common;
+use common::{anisomesh_ok, s, scratch};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("anisomesh-cli-measure3-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch("cli-measure3").join(name)
 }
 
 const R: f64 = 0.3;
@@ -71,7 +54,7 @@ fn against(mesh: &Path, reference: &Path, u: &Path, own: Option<&Path>) -> serde
     if let Some(v) = own {
         args.extend(["--level-set", s(v)]);
     }
-    let v: serde_json::Value = serde_json::from_str(&anisomesh(&args)).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&anisomesh_ok(&args)).unwrap();
     v["against"].clone()
 }
 

@@ -6,29 +6,12 @@ use anisomesh::adapt::{level_set_metric, run, AdaptTarget, LevelSetMetric, RunOp
 use anisomesh::io::{self, Sol, SolField};
 use anisomesh::{DVec2, GridPattern, Mesh2, Sym2};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn anisomesh(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_anisomesh"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+mod common;
+use common::{anisomesh_ok, s, scratch};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("anisomesh-cli-metric-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch("cli-metric").join(name)
 }
 
 fn read_metric(p: &Path) -> Vec<Sym2> {
@@ -81,7 +64,7 @@ fn metric_command_writes_the_metric_adapt_adapts_to() {
         ..RunOptions::default()
     };
     let out = tmp("ls_metric.sol");
-    anisomesh(&[
+    anisomesh_ok(&[
         "metric",
         "--input",
         s(&m),
@@ -127,7 +110,7 @@ fn metric_command_writes_the_metric_adapt_adapts_to() {
 
     // The Hessian metric with a target vertex count: the same call as adapt's.
     let out_h = tmp("ls_hessian.sol");
-    anisomesh(&[
+    anisomesh_ok(&[
         "metric",
         "--input",
         s(&m),

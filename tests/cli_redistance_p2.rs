@@ -5,30 +5,13 @@
 
 use anisomesh::io::{self, SolField};
 use anisomesh::{DVec2, GridPattern, Mesh2};
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::PathBuf;
 
-fn anisomesh(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_anisomesh"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+mod common;
+use common::{anisomesh_ok, s, scratch};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("anisomesh-cli-p2-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch("cli-p2").join(name)
 }
 
 /// A level set that is not a distance, whose zero level is the circle of radius 0.6.
@@ -70,7 +53,7 @@ fn band_error(n: usize, order: usize) -> f64 {
     io::write_medit2(&mp, &m).unwrap();
     let out = tmp(&format!("p2_{n}_k{order}.sol"));
     let order_s = order.to_string();
-    anisomesh(&[
+    anisomesh_ok(&[
         "redistance",
         "--input",
         s(&mp),

@@ -6,41 +6,13 @@ use anisomesh::io::{self, Medit3, Sol, SolField};
 use anisomesh::mesh3::Mesh3;
 use anisomesh::{DVec2, DVec3, GridPattern, Mesh2};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn anisomesh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_anisomesh"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn ok(out: &Output) -> String {
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn assert_clean_error(out: &Output, needle: &str) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "expected failure, got success");
-    assert!(!stderr.contains("panicked"), "panic: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
-    assert!(stderr.contains(needle), "'{needle}' not in: {stderr}");
-}
+mod common;
+use common::{anisomesh, assert_clean_error, ok, s, scratch};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("anisomesh-cli-tools-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch("cli-tools").join(name)
 }
 
 fn grid(n: usize, lo: f64, hi: f64) -> Mesh2 {

@@ -7,31 +7,12 @@ use anisomesh::io::{self, Medit3, Sol};
 use anisomesh::mesh3::Mesh3;
 use anisomesh::{DVec2, DVec3, GridPattern, Mesh2, Sym2};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn anisomesh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_anisomesh"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn assert_clean_error(out: &Output, needle: &str) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "expected failure, got success");
-    assert!(!stderr.contains("panicked"), "panic: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
-    assert!(stderr.contains(needle), "'{needle}' not in: {stderr}");
-}
+mod common;
+use common::{anisomesh, assert_clean_error, s, scratch};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("anisomesh-cli-errors-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
+    scratch("cli-errors").join(name)
 }
 
 #[test]
