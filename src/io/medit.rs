@@ -65,11 +65,12 @@ pub(crate) fn is_keyword(t: &str) -> bool {
 }
 
 /// Reads a 1-based vertex index and returns it 0-based.
-fn vertex_index(tk: &mut Tokens, what: &str) -> Result<u32> {
-    let v: i64 = tk.int(what)?;
+fn vertex_index(tk: &mut Tokens, what: &dyn Fn() -> String) -> Result<u32> {
+    let v: i64 = tk.int_with(what)?;
     if v < 1 || v > (NONE as i64) {
         return Err(tk.err(format!(
-            "{what}: vertex index {v} is out of range (indices are 1-based)"
+            "{}: vertex index {v} is out of range (indices are 1-based)",
+            what()
         )));
     }
     Ok((v - 1) as u32)
@@ -197,12 +198,13 @@ impl MeditData {
         let cap = tk.capacity(n, 2 * self.dim + 2);
         self.coords.reserve(cap * self.dim);
         self.point_ref.reserve(cap);
+        self.point_line.reserve(cap);
         for k in 0..n {
-            let what = format!("vertex {} of {n}", k + 1);
+            let what = || format!("vertex {} of {n}", k + 1);
             for _ in 0..self.dim {
-                self.coords.push(tk.real(&what)?);
+                self.coords.push(tk.real_with(&what)?);
             }
-            self.point_ref.push(tk.int(&what)?);
+            self.point_ref.push(tk.int_with(&what)?);
             self.point_line.push(tk.token_line());
         }
         Ok(())
@@ -213,14 +215,16 @@ impl MeditData {
         let n = tk.count("number of triangles")?;
         let cap = tk.capacity(n, 8);
         self.tris.reserve(cap);
+        self.tri_ref.reserve(cap);
+        self.tri_line.reserve(cap);
         for k in 0..n {
-            let what = format!("triangle {} of {n}", k + 1);
+            let what = || format!("triangle {} of {n}", k + 1);
             let mut t = [0u32; 3];
             for v in &mut t {
                 *v = vertex_index(tk, &what)?;
             }
             self.tris.push(t);
-            self.tri_ref.push(tk.int(&what)?);
+            self.tri_ref.push(tk.int_with(&what)?);
             self.tri_line.push(tk.token_line());
         }
         Ok(())
@@ -231,13 +235,13 @@ impl MeditData {
         let n = tk.count("number of tetrahedra")?;
         self.tets.reserve(tk.capacity(n, 10));
         for k in 0..n {
-            let what = format!("tetrahedron {} of {n}", k + 1);
+            let what = || format!("tetrahedron {} of {n}", k + 1);
             let mut t = [0u32; 4];
             for v in &mut t {
                 *v = vertex_index(tk, &what)?;
             }
             self.tets.push(t);
-            self.tet_ref.push(tk.int(&what)?);
+            self.tet_ref.push(tk.int_with(&what)?);
             self.tet_line.push(tk.token_line());
         }
         Ok(())
@@ -249,10 +253,10 @@ impl MeditData {
         self.has_edges = true;
         self.edges.reserve(tk.capacity(n, 6));
         for k in 0..n {
-            let what = format!("edge {} of {n}", k + 1);
+            let what = || format!("edge {} of {n}", k + 1);
             let a = vertex_index(tk, &what)?;
             let b = vertex_index(tk, &what)?;
-            let label = tk.int(&what)?;
+            let label = tk.int_with(&what)?;
             self.edges.push(RawEdge {
                 v: [a, b],
                 label,
@@ -269,7 +273,7 @@ fn read_vertex_list(tk: &mut Tokens, kw: &str) -> Result<Vec<(u32, usize)>> {
     let n = tk.count(kw)?;
     let mut list = Vec::with_capacity(tk.capacity(n, 2));
     for k in 0..n {
-        let v = vertex_index(tk, &format!("{kw} entry {} of {n}", k + 1))?;
+        let v = vertex_index(tk, &|| format!("{kw} entry {} of {n}", k + 1))?;
         list.push((v, tk.token_line()));
     }
     Ok(list)
@@ -403,24 +407,27 @@ pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
         ]);
         o.line()?;
     }
-    let edges: Vec<[u32; 3]> = mesh
-        .edges()
-        .into_iter()
-        .filter_map(|(_, t, i)| {
-            let (t, i) = (t as usize, i as usize);
-            let label = mesh.edge_ref[t][i];
-            (mesh.neighbours[t][i] == NONE || label != 0).then(|| {
-                let [a, b] = mesh.edge_vertices(t, i);
-                [a, b, label as u32]
-            })
-        })
-        .collect();
+    // The edges written, in the order of TriMesh::edges (each interior edge from the triangle
+    // with the smaller index), without collecting every edge of the mesh.
+    let written = |t: usize, i: usize| {
+        let nb = mesh.neighbours[t][i];
+        (nb == NONE || nb as usize > t) && (nb == NONE || mesh.edge_ref[t][i] != 0)
+    };
+    let n_edges = mesh
+        .live_tris()
+        .map(|t| (0..3).filter(|&i| written(t, i)).count())
+        .sum::<usize>();
     o.text("\nEdges\n");
-    o.int(edges.len());
+    o.int(n_edges);
     o.text("\n");
-    for [a, b, label] in edges {
-        o.ints(&[a as i64 + 1, b as i64 + 1, label as i32 as i64]);
-        o.line()?;
+    for t in mesh.live_tris() {
+        for i in 0..3 {
+            if written(t, i) {
+                let [a, b] = mesh.edge_vertices(t, i);
+                o.ints(&[a as i64 + 1, b as i64 + 1, mesh.edge_ref[t][i] as i64]);
+                o.line()?;
+            }
+        }
     }
     for (name, flags) in [
         ("Corners", &mesh.corner),

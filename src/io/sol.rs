@@ -191,10 +191,10 @@ fn read_sol_at_vertices(tk: &mut Tokens, dim: usize, expected: Option<usize>) ->
         .collect();
     for v in 0..n {
         for (k, f) in fields.iter_mut().enumerate() {
-            let what = format!("vertex {} of {n}, field {}", v + 1, k + 1);
+            let what = || format!("vertex {} of {n}, field {}", v + 1, k + 1);
             let mut x = [0.0f64; 6];
             for c in x.iter_mut().take(f.components(dim)) {
-                *c = tk.real(&what)?;
+                *c = tk.real_with(&what)?;
             }
             match f {
                 SolField::Scalar(s) => s.push(x[0]),

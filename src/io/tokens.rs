@@ -55,21 +55,23 @@ impl<'a> Tokens<'a> {
 
     fn skip_space(&mut self) {
         let b = self.text.as_bytes();
-        while self.pos < b.len() {
-            let c = b[self.pos];
+        let mut pos = self.pos;
+        while pos < b.len() {
+            let c = b[pos];
             if c == b'\n' {
                 self.line += 1;
-                self.pos += 1;
-            } else if c.is_ascii_whitespace() {
-                self.pos += 1;
+                pos += 1;
+            } else if c <= b' ' && c.is_ascii_whitespace() {
+                pos += 1;
             } else if Some(c) == self.comment {
-                while self.pos < b.len() && b[self.pos] != b'\n' {
-                    self.pos += 1;
+                while pos < b.len() && b[pos] != b'\n' {
+                    pos += 1;
                 }
             } else {
                 break;
             }
         }
+        self.pos = pos;
     }
 
     /// The next token and its line, or `None` at the end of the file.
@@ -80,12 +82,17 @@ impl<'a> Tokens<'a> {
             return None;
         }
         let start = self.pos;
-        while self.pos < b.len()
-            && !b[self.pos].is_ascii_whitespace()
-            && Some(b[self.pos]) != self.comment
-        {
-            self.pos += 1;
+        // Bytes above b' ' are never whitespace: only those at or below it need the full test.
+        let comment = self.comment.unwrap_or(b' ');
+        let mut pos = start;
+        while pos < b.len() {
+            let c = b[pos];
+            if (c <= b' ' && c.is_ascii_whitespace()) || c == comment {
+                break;
+            }
+            pos += 1;
         }
+        self.pos = pos;
         self.tok_line = self.line;
         // Token boundaries are ASCII bytes, so slicing is on char boundaries.
         Some((&self.text[start..self.pos], self.line))
@@ -111,8 +118,16 @@ impl<'a> Tokens<'a> {
 
     /// The next token parsed as `T` (an integer type); `what` names the quantity in errors.
     pub fn int<T: FromStr>(&mut self, what: &str) -> Result<T> {
-        let t = self.expect(what)?;
+        self.int_with(&|| what.to_string())
+    }
+
+    /// As [`Tokens::int`], with the name built only for an error (no allocation per item).
+    pub fn int_with<T: FromStr>(&mut self, what: &dyn Fn() -> String) -> Result<T> {
+        let Some((t, _)) = self.next_token() else {
+            return Err(self.err(format!("unexpected end of file while reading {}", what())));
+        };
         t.parse::<T>().map_err(|_| {
+            let what = what();
             if t.parse::<i128>().is_ok() {
                 self.err(format!("{what}: integer '{t}' is out of range"))
             } else {
@@ -139,11 +154,25 @@ impl<'a> Tokens<'a> {
 
     /// The next token as a finite `f64`.
     pub fn real(&mut self, what: &str) -> Result<f64> {
-        let t = self.expect(what)?;
+        self.real_with(&|| what.to_string())
+    }
+
+    /// As [`Tokens::real`], with the name built only for an error (no allocation per item).
+    pub fn real_with(&mut self, what: &dyn Fn() -> String) -> Result<f64> {
+        let Some((t, _)) = self.next_token() else {
+            return Err(self.err(format!("unexpected end of file while reading {}", what())));
+        };
         match t.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            Ok(_) => Err(self.err(format!("{what}: non-finite value '{t}' (NaN or infinity)"))),
-            Err(_) => Err(self.err(format!("{what}: expected a number, found '{}'", shorten(t)))),
+            Ok(_) => Err(self.err(format!(
+                "{}: non-finite value '{t}' (NaN or infinity)",
+                what()
+            ))),
+            Err(_) => Err(self.err(format!(
+                "{}: expected a number, found '{}'",
+                what(),
+                shorten(t)
+            ))),
         }
     }
 

@@ -8,8 +8,8 @@
 
 use crate::error::{Error, MeshDefect, Result};
 use crate::geom::{orient2d, DVec2};
+use crate::mesh::build::{build_adjacency, validate_elements};
 use crate::mesh::{next, prev, Mesh2, NONE};
-use std::collections::HashMap;
 use std::path::Path;
 
 /// An edge label read from a file: 0-based vertices, label, source line.
@@ -54,12 +54,13 @@ pub(crate) fn build_mesh(path: &Path, mut raw: RawMesh2) -> Result<Mesh2> {
             ));
         }
     }
-    let check_index = |v: u32, line: usize, what: &str| -> Result<()> {
+    let check_index = |v: u32, line: usize, what: &dyn Fn() -> String| -> Result<()> {
         if v as usize >= np {
             Err(perr(
                 line,
                 format!(
-                    "{what} refers to vertex {} but there are {np} vertices (indices are 1-based)",
+                    "{} refers to vertex {} but there are {np} vertices (indices are 1-based)",
+                    what(),
                     v as u64 + 1
                 ),
             ))
@@ -69,7 +70,7 @@ pub(crate) fn build_mesh(path: &Path, mut raw: RawMesh2) -> Result<Mesh2> {
     };
     for (t, tri) in raw.tris.iter().enumerate() {
         for &v in tri {
-            check_index(v, raw.tri_line[t], &format!("triangle {}", t + 1))?;
+            check_index(v, raw.tri_line[t], &|| format!("triangle {}", t + 1))?;
         }
         if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
             return Err(perr(
@@ -80,11 +81,11 @@ pub(crate) fn build_mesh(path: &Path, mut raw: RawMesh2) -> Result<Mesh2> {
     }
     for e in &raw.edges {
         for &v in &e.v {
-            check_index(v, e.line, "edge")?;
+            check_index(v, e.line, &|| "edge".into())?;
         }
     }
     for &(v, line) in raw.corners.iter().chain(&raw.required) {
-        check_index(v, line, "corner/required vertex entry")?;
+        check_index(v, line, &|| "corner/required vertex entry".into())?;
     }
     orient(path, &mut raw)?;
     let tri_line = std::mem::take(&mut raw.tri_line);
@@ -93,11 +94,13 @@ pub(crate) fn build_mesh(path: &Path, mut raw: RawMesh2) -> Result<Mesh2> {
         let line = defect_line(&d, &tri_line, &point_line, tris).unwrap_or(raw.last_line);
         Error::parse(path, line, format!("invalid mesh: {}", one_based(&d)))
     };
-    let tris_copy = raw.tris.clone();
-    let mut mesh = Mesh2::from_parts(raw.points, raw.tris, raw.tri_ref).map_err(|e| match e {
-        Error::InvalidMesh(d) => defect(d, &tris_copy),
+    let to_defect = |e: Error, tris: &[[u32; 3]]| match e {
+        Error::InvalidMesh(d) => defect(d, tris),
         other => other,
-    })?;
+    };
+    validate_elements(&raw.points, &raw.tris).map_err(|e| to_defect(e, &raw.tris))?;
+    let neighbours = build_adjacency(&raw.tris).map_err(|e| to_defect(e, &raw.tris))?;
+    let mut mesh = Mesh2::assemble(raw.points, raw.tris, neighbours, raw.tri_ref);
     mesh.vert_ref = raw.vert_ref;
     apply_edges(path, &mut mesh, &raw.edges, raw.has_edges)?;
     for &(v, _) in &raw.corners {
@@ -106,10 +109,7 @@ pub(crate) fn build_mesh(path: &Path, mut raw: RawMesh2) -> Result<Mesh2> {
     for &(v, _) in &raw.required {
         mesh.required[v as usize] = true;
     }
-    mesh.check().map_err(|e| match e {
-        Error::InvalidMesh(d) => defect(d, &tris_copy),
-        other => other,
-    })?;
+    mesh.check().map_err(|e| to_defect(e, &mesh.tris))?;
     Ok(mesh)
 }
 
@@ -167,20 +167,15 @@ fn apply_edges(path: &Path, mesh: &mut Mesh2, edges: &[RawEdge], has_edges: bool
     if !has_edges {
         return Ok(());
     }
-    let mut index: HashMap<(u32, u32), (u32, u8)> = HashMap::with_capacity(3 * mesh.n_tris() / 2);
-    for ([a, b], t, i) in mesh.edges() {
-        index.insert((a, b), (t, i));
-        let nb = mesh.neighbours[t as usize][i as usize];
-        if nb != NONE {
-            mesh.edge_ref[t as usize][i as usize] = 0;
-            if let Some(j) = mesh.mirror_edge(t as usize, nb as usize) {
-                mesh.edge_ref[nb as usize][j] = 0;
+    for t in 0..mesh.n_tris() {
+        for i in 0..3 {
+            if mesh.neighbours[t][i] != NONE {
+                mesh.edge_ref[t][i] = 0;
             }
         }
     }
     for e in edges {
-        let key = (e.v[0].min(e.v[1]), e.v[0].max(e.v[1]));
-        let Some(&(t, i)) = index.get(&key) else {
+        let Some((t, i)) = find_edge(mesh, e.v[0], e.v[1]) else {
             return Err(Error::parse(
                 path,
                 e.line,
@@ -191,7 +186,6 @@ fn apply_edges(path: &Path, mesh: &mut Mesh2, edges: &[RawEdge], has_edges: bool
                 ),
             ));
         };
-        let (t, i) = (t as usize, i as usize);
         mesh.edge_ref[t][i] = e.label;
         let nb = mesh.neighbours[t][i];
         if nb != NONE {
@@ -201,6 +195,24 @@ fn apply_edges(path: &Path, mesh: &mut Mesh2, edges: &[RawEdge], has_edges: bool
         }
     }
     Ok(())
+}
+
+/// A triangle and local edge joining `a` and `b`: searched in the fan of `a`, then (a vertex
+/// whose triangles do not form one fan) among all triangles.
+fn find_edge(mesh: &Mesh2, a: u32, b: u32) -> Option<(usize, usize)> {
+    let on = |t: usize| {
+        (0..3).find(|&i| {
+            let [p, q] = mesh.edge_vertices(t, i);
+            (p == a && q == b) || (p == b && q == a)
+        })
+    };
+    let mut found = None;
+    mesh.for_each_fan_triangle(a, |t| {
+        if found.is_none() {
+            found = on(t as usize).map(|i| (t as usize, i));
+        }
+    });
+    found.or_else(|| (0..mesh.n_tris()).find_map(|t| on(t).map(|i| (t, i))))
 }
 
 /// The source line of the entity a defect names.

@@ -53,7 +53,7 @@ impl<P> TriMesh<P> {
     }
 
     /// A mesh from validated parts: edges labelled 1 on the boundary, 2 between sub-domains.
-    fn assemble(
+    pub(crate) fn assemble(
         points: Vec<P>,
         tris: Vec<[u32; 3]>,
         neighbours: Vec<[u32; 3]>,
@@ -164,9 +164,119 @@ pub(crate) fn validate_indices(t: usize, tri: &[u32; 3], n_points: usize) -> Res
     Ok(())
 }
 
-/// Computes the neighbour relation by sorting half-edges. Errors on duplicate triangles, edges
-/// used twice in the same direction (inconsistent orientation / overlap) and non-manifold edges.
+/// Computes the neighbour relation by grouping half-edges by their smaller vertex (a counting
+/// sort) and sorting each small group by `(larger vertex, triangle, local edge)`: the groups are
+/// visited in the order of a full sort of `(min, max, t, i)`, so the first defect reported is
+/// the same. Errors on duplicate triangles, edges used twice in the same direction
+/// (inconsistent orientation / overlap) and non-manifold edges.
 pub(crate) fn build_adjacency(tris: &[[u32; 3]]) -> Result<Vec<[u32; 3]>> {
+    let nv = tris
+        .iter()
+        .filter(|t| t[0] != NONE)
+        .flat_map(|t| t.iter())
+        .map(|&v| v as usize + 1)
+        .max()
+        .unwrap_or(0);
+    if tris.len() >= 1 << 30 {
+        return build_adjacency_sorted(tris);
+    }
+    // start[v]..start[v + 1]: the half-edges `max << 32 | t << 2 | i` whose smaller vertex is v.
+    let mut start = vec![0u32; nv + 1];
+    for tri in tris.iter().filter(|t| t[0] != NONE) {
+        for i in 0..3 {
+            start[tri[next(i)].min(tri[prev(i)]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut half = vec![0u64; start[nv] as usize];
+    for (t, tri) in tris.iter().enumerate() {
+        if tri[0] == NONE {
+            continue;
+        }
+        for i in 0..3 {
+            let (a, b) = (tri[next(i)], tri[prev(i)]);
+            let v = a.min(b) as usize;
+            half[start[v] as usize] = (u64::from(a.max(b)) << 32) | ((t as u64) << 2) | i as u64;
+            start[v] += 1;
+        }
+    }
+    // start[v] is now the end of v's group, the start of v + 1's.
+    let max_of = |h: u64| (h >> 32) as u32;
+    let mut nb = vec![[NONE; 3]; tris.len()];
+    let mut lo = 0usize;
+    for v in 0..nv {
+        let hi = start[v] as usize;
+        let group = &mut half[lo..hi];
+        lo = hi;
+        // Insertion sort by (max, t, i): the groups are small (a vertex's edges).
+        for k in 1..group.len() {
+            let h = group[k];
+            let mut j = k;
+            while j > 0 && group[j - 1] > h {
+                group[j] = group[j - 1];
+                j -= 1;
+            }
+            group[j] = h;
+        }
+        let mut k = 0;
+        while k < group.len() {
+            let max = max_of(group[k]);
+            let mut e = k + 1;
+            while e < group.len() && max_of(group[e]) == max {
+                e += 1;
+            }
+            let unpack = |h: u64| (((h & 0xffff_ffff) >> 2) as usize, (h & 3) as usize);
+            match e - k {
+                1 => {}
+                2 => {
+                    let ((t0, i0), (t1, i1)) = (unpack(group[k]), unpack(group[k + 1]));
+                    let fwd = |t: usize, i: usize| tris[t][next(i)] < tris[t][prev(i)];
+                    if fwd(t0, i0) == fwd(t1, i1) {
+                        return Err(same_direction(tris, t0, t1, i1));
+                    }
+                    nb[t0][i0] = t1 as u32;
+                    nb[t1][i1] = t0 as u32;
+                }
+                _ => {
+                    return Err(MeshDefect::NonManifoldEdge {
+                        a: v,
+                        b: max as usize,
+                    }
+                    .into())
+                }
+            }
+            k = e;
+        }
+    }
+    Ok(nb)
+}
+
+/// The defect of an edge traversed twice in the same direction, by triangles `t0 < t1` (`t1`'s
+/// local edge `i1`): a duplicate triangle or a fold.
+fn same_direction(tris: &[[u32; 3]], t0: usize, t1: usize, i1: usize) -> crate::error::Error {
+    let mut s0 = tris[t0];
+    let mut s1 = tris[t1];
+    s0.sort_unstable();
+    s1.sort_unstable();
+    if s0 == s1 {
+        return MeshDefect::DuplicateTriangle {
+            first: t0.min(t1),
+            second: t0.max(t1),
+        }
+        .into();
+    }
+    MeshDefect::BadAdjacency {
+        tri: t1,
+        edge: i1,
+        detail: "edge is traversed twice in the same direction (overlapping triangles)",
+    }
+    .into()
+}
+
+/// [`build_adjacency`] by sorting all half-edges at once (meshes of 2^30 triangles or more).
+fn build_adjacency_sorted(tris: &[[u32; 3]]) -> Result<Vec<[u32; 3]>> {
     // Half-edge key: (min, max, t, i, forward)
     let mut half: Vec<(u32, u32, u32, u8, bool)> = Vec::with_capacity(3 * tris.len());
     for (t, tri) in tris.iter().enumerate() {

@@ -5,52 +5,89 @@ use super::build::{validate_elements, validate_indices};
 use super::{next, prev, Mesh2, TriMesh, NONE};
 use crate::error::{MeshDefect, Result};
 use crate::geom::{orient2d, DVec2};
-use std::f64::consts::PI;
 
 impl Mesh2 {
     /// Verifies every invariant of the mesh and reports the first defect found:
     /// array lengths, index ranges, finite coordinates, strictly positive orientation (exact
     /// predicate), symmetric adjacency that matches the shared edge, labels (an interior labelled
     /// edge carries the same label on both sides), valid vertex seeds, no duplicate vertices, no
-    /// overlapping fans (angle sum at a vertex at most a full turn) and no hanging vertex inside a
-    /// boundary edge (conformity). Tombstoned triangles are skipped.
+    /// overlapping fans (angle sum at a vertex at most a full turn, decided by exact orientation
+    /// predicates) and no hanging vertex inside a boundary edge (conformity). Tombstoned
+    /// triangles are skipped.
     pub fn check(&self) -> Result<()> {
         self.check_lengths()?;
-        validate_elements(&self.points, &self.tris)?;
-        self.check_adjacency()?;
+        // Independent parts run side by side; the first defect in the order listed wins.
+        let (elements, adjacency) = rayon::join(
+            || validate_elements(&self.points, &self.tris),
+            || self.check_adjacency(),
+        );
+        elements?;
+        adjacency?;
         let referenced = self.check_seeds()?;
-        self.check_duplicate_points(&referenced)?;
-        self.check_fans(Some(&self.angle_sums()))?;
-        self.check_hanging_vertices()?;
-        Ok(())
+        let (duplicates, fans) = rayon::join(
+            || self.check_duplicate_points(&referenced),
+            || {
+                self.check_fans(Some(&|v, walked| self.overlapping_fan(v, walked)))?;
+                self.check_hanging_vertices()
+            },
+        );
+        duplicates?;
+        fans
     }
 
-    /// The sum of the interior angles at each vertex over the live triangles.
-    fn angle_sums(&self) -> Vec<f64> {
-        let mut angle = vec![0.0f64; self.points.len()];
-        for t in self.live_tris() {
-            let p = self.tri_points(t);
-            for i in 0..3 {
-                let (e1, e2) = (p[next(i)] - p[i], p[prev(i)] - p[i]);
-                angle[self.tris[t][i] as usize] += e1.perp_dot(e2).atan2(e1.dot(e2));
+    /// Whether the angles of the triangles around the referenced vertex `v` (a single fan of
+    /// counter-clockwise triangles) add up to more than a full turn, decided without
+    /// trigonometry: each triangle at `v` sweeps the directions from its edge `(v, tri[next(i)])`
+    /// counter-clockwise to `(v, tri[prev(i)])`, and the number of sweeps that contain the
+    /// direction `d` of the first edge of the fan (half-open: the end included, the start not)
+    /// counts the full turns (exact orientation predicates). The fan is walked from its start,
+    /// the boundary edge of an open fan. A closed fan turns exactly once; an open fan may end
+    /// exactly on `d` (a slit).
+    fn overlapping_fan(&self, v: usize, walked: &mut u32) -> bool {
+        let pv = self.points[v];
+        let mut first: Option<(DVec2, bool)> = None;
+        let (mut turns, mut ends_on_d) = (0u32, false);
+        self.for_each_fan_triangle(v as u32, |t| {
+            *walked += 1;
+            let t = t as usize;
+            let Some(k) = self.local_index(t, v as u32) else {
+                return;
+            };
+            let tri = self.tris[t];
+            let a = self.points[tri[next(k)] as usize];
+            let b = self.points[tri[prev(k)] as usize];
+            let (d, open) = *first.get_or_insert((a, self.neighbours[t][prev(k)] == NONE));
+            if orient2d(pv, a, d) > 0.0 && orient2d(pv, d, b) >= 0.0 {
+                turns += 1;
+                if open && self.neighbours[t][next(k)] == NONE && orient2d(pv, d, b) == 0.0 {
+                    ends_on_d = true;
+                }
             }
+        });
+        match first {
+            Some((_, true)) => turns > u32::from(ends_on_d),
+            _ => turns > 1,
         }
-        angle
     }
 
     /// No two referenced vertices at the same coordinates.
     fn check_duplicate_points(&self, referenced: &[bool]) -> Result<()> {
-        // Sort indices by (x, y).
-        let mut order: Vec<usize> = (0..self.points.len()).filter(|&v| referenced[v]).collect();
-        order.sort_unstable_by(|&a, &b| {
-            let (p, q) = (self.points[a], self.points[b]);
-            p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
-        });
+        // Sort by (x, y) in the order of f64::total_cmp, as integer keys.
+        let key = |x: f64| {
+            let b = x.to_bits() as i64;
+            b ^ (((b >> 63) as u64) >> 1) as i64
+        };
+        let mut order: Vec<(i64, i64, u32)> = (0..self.points.len())
+            .filter(|&v| referenced[v])
+            .map(|v| (key(self.points[v].x), key(self.points[v].y), v as u32))
+            .collect();
+        order.sort_unstable();
         for w in order.windows(2) {
-            if self.points[w[0]] == self.points[w[1]] {
+            let (a, b) = (w[0].2 as usize, w[1].2 as usize);
+            if self.points[a] == self.points[b] {
                 return Err(MeshDefect::DuplicateVertex {
-                    first: w[0].min(w[1]),
-                    second: w[0].max(w[1]),
+                    first: a.min(b),
+                    second: a.max(b),
                 }
                 .into());
             }
@@ -265,9 +302,10 @@ impl<P> TriMesh<P> {
     }
 
     /// Every referenced vertex: its fan, walked from its seed, must reach every triangle that uses
-    /// it (a single manifold fan), and with `angle` (the angle sums of [`Mesh2::check`]) the
-    /// angles around it must not exceed a full turn.
-    fn check_fans(&self, angle: Option<&[f64]>) -> Result<()> {
+    /// it (a single manifold fan), and with `overlapping` (the test of [`Mesh2::check`], which
+    /// walks the fan itself and counts its triangles in `walked`) the angles around it must not
+    /// exceed a full turn.
+    fn check_fans(&self, overlapping: Option<&dyn Fn(usize, &mut u32) -> bool>) -> Result<()> {
         let mut uses = vec![0u32; self.points.len()];
         for t in self.live_tris() {
             for &v in &self.tris[t] {
@@ -278,8 +316,15 @@ impl<P> TriMesh<P> {
             if uses[v] == 0 {
                 continue;
             }
+            // The fan is walked once: by the overlap test (which counts it) or here.
             let mut walked = 0u32;
-            self.for_each_fan_triangle(v as u32, |_| walked += 1);
+            let overlaps = match overlapping {
+                Some(f) => f(v, &mut walked),
+                None => {
+                    self.for_each_fan_triangle(v as u32, |_| walked += 1);
+                    false
+                }
+            };
             if walked != uses[v] {
                 return Err(MeshDefect::BadVertexData {
                     vertex: v,
@@ -287,7 +332,7 @@ impl<P> TriMesh<P> {
                 }
                 .into());
             }
-            if angle.is_some_and(|a| a[v] > 2.0 * PI * (1.0 + 1e-9)) {
+            if overlaps {
                 return Err(MeshDefect::OverlappingTriangles { vertex: v }.into());
             }
         }

@@ -25,7 +25,7 @@
 //! (`order.rs`) and the constrained Delaunay mesher (`polygon.rs`, `cdt.rs`). A triangulated
 //! surface in space is a `TriMesh<DVec3>` and reuses the topology and the edits.
 
-mod build;
+pub(crate) mod build;
 mod cavity;
 mod cdt;
 mod check;

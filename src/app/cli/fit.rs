@@ -66,11 +66,23 @@ pub struct FitReport {
     pub seconds: f64,
 }
 
-/// Reads a mesh and a scalar level set, fits the level `iso`, checks the result.
-pub fn fit_files(input: &Path, sol: &Path, iso: f64) -> Result<FittedMesh> {
-    let mesh = io::read_mesh(input)?;
-    let u = read_scalar(sol, mesh.n_points())?;
-    let f = fit(
+/// Reads a mesh and a scalar level set (the `.sol` is read and parsed on a second thread while
+/// the mesh is read; a mesh error is reported first, as when read one after the other) and fits
+/// the level `iso`.
+fn fit_unchecked(input: &Path, sol: &Path, iso: f64) -> Result<FittedMesh> {
+    let (mesh, sol_data) = std::thread::scope(|s| {
+        let sol_thread = s.spawn(|| io::read_sol(sol));
+        let mesh = io::read_mesh(input);
+        (mesh, sol_thread.join())
+    });
+    let mesh = mesh?;
+    let n = mesh.n_points();
+    let u = match sol_data {
+        Ok(Ok(data)) if data.n_vertices() == n => scalar_field(sol, data, n)?,
+        // Any error or another vertex count: read again with the count, for its message.
+        _ => read_scalar(sol, n)?,
+    };
+    fit(
         &mesh,
         &u,
         &FitOptions {
@@ -81,15 +93,17 @@ pub fn fit_files(input: &Path, sol: &Path, iso: f64) -> Result<FittedMesh> {
     .map_err(|e| match e {
         Error::EmptyLevelSet(m) => Error::EmptyLevelSet(format!("{}: {m}", sol.display())),
         e => e,
-    })?;
-    f.mesh.check()?;
-    Ok(f)
+    })
 }
 
 /// The scalar level set of a `.sol` with `n` vertices; NaN and infinite values are refused
 /// with the vertex named.
 fn read_scalar(sol: &Path, n: usize) -> Result<Vec<f64>> {
-    let sol_data = io::read_sol_for(sol, n)?;
+    scalar_field(sol, io::read_sol_for(sol, n)?, n)
+}
+
+/// The first field of `sol_data` (read from `sol`) as the scalar level set of `n` vertices.
+fn scalar_field(sol: &Path, sol_data: io::Sol, n: usize) -> Result<Vec<f64>> {
     let u = match sol_data.fields.into_iter().next() {
         Some(SolField::Scalar(u)) => u,
         _ => {
@@ -207,11 +221,43 @@ pub fn run(a: FitArgs) -> Result<()> {
         ));
     };
     let start = Instant::now();
-    let f = fit_files(input, sol, a.iso)?;
-    io::write_mesh(output, &f.mesh)?;
+    let f = fit_unchecked(input, sol, a.iso)?;
+    write_checked(output, &f.mesh)?;
     let r = report_of(&f, start.elapsed().as_secs_f64());
     println!("wrote {}", output.display());
     print_report(&r, a.report.as_deref())
+}
+
+/// Checks the fitted mesh and writes it; a Medit output is formatted while `check()` runs on a
+/// second thread and is committed only when the check passes (the file is then never written).
+fn write_checked(output: &Path, mesh: &anisomesh::Mesh2) -> Result<()> {
+    if !output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mesh"))
+    {
+        mesh.check()?;
+        return io::write_mesh(output, mesh);
+    }
+    let mut checked = None;
+    let written = std::thread::scope(|s| {
+        let check = s.spawn(|| mesh.check());
+        io::atomic_write(output, |w| {
+            io::write_medit2_to(w, mesh)?;
+            let result = check.join().unwrap_or_else(|_| {
+                Err(Error::InvalidInput("fit: the mesh check panicked".into()))
+            });
+            let failed = result.is_err();
+            checked = Some(result);
+            if failed {
+                return Err(std::io::Error::other("the fitted mesh failed check()"));
+            }
+            Ok(())
+        })
+    });
+    match checked {
+        Some(Err(e)) => Err(e),
+        _ => written,
+    }
 }
 
 /// `anisomesh fit --compare-mmg`: the comparison table and `fit_compare.json`.

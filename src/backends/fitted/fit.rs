@@ -24,7 +24,6 @@
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::mesh::{check_p1_field, next, prev, Mesh2, NONE};
-use std::collections::HashMap;
 
 /// Label of the triangles where the level set is negative (as `mmg2d -ls`).
 pub const REF_INSIDE: i32 = 3;
@@ -209,22 +208,37 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
         )));
     }
     let nb = base.n_points();
-    let mut points = base.points.clone();
-    let mut values = v.clone();
+    // Room for the new vertices (about one per cut edge) without regrowing.
+    let extra = base.n_tris() / 8 + 16;
+    let mut points = Vec::with_capacity(nb + extra);
+    points.extend_from_slice(&base.points);
+    let mut values = Vec::with_capacity(nb + extra);
+    values.extend_from_slice(&v);
     let mut cuts: Vec<([u32; 2], f64)> = Vec::new();
-    let mut cut_of: HashMap<(u32, u32), u32> = HashMap::new();
-    let mut cut = |a: u32, b: u32, points: &mut Vec<DVec2>, values: &mut Vec<f64>| -> u32 {
-        let key = (a.min(b), a.max(b));
-        *cut_of.entry(key).or_insert_with(|| {
-            let (lo, hi) = key;
-            let (ul, uh) = (v[lo as usize], v[hi as usize]);
-            let s = ul / (ul - uh);
-            let (pl, ph) = (base.points[lo as usize], base.points[hi as usize]);
-            points.push(pl + (ph - pl) * s);
-            values.push(0.0);
-            cuts.push(([lo, hi], s));
-            (points.len() - 1) as u32
-        })
+    // The new vertex of each cut edge, stored on both triangles of the edge (local edge k of
+    // triangle t at 3t + k), so each edge is cut once, in the order the triangles meet it.
+    let mut cut_of: Vec<u32> = vec![NONE; 3 * base.n_tris()];
+    let mut cut = |t: usize, k: usize, points: &mut Vec<DVec2>, values: &mut Vec<f64>| -> u32 {
+        if cut_of[3 * t + k] != NONE {
+            return cut_of[3 * t + k];
+        }
+        let [a, b] = base.edge_vertices(t, k);
+        let (lo, hi) = (a.min(b), a.max(b));
+        let (ul, uh) = (v[lo as usize], v[hi as usize]);
+        let s = ul / (ul - uh);
+        let (pl, ph) = (base.points[lo as usize], base.points[hi as usize]);
+        points.push(pl + (ph - pl) * s);
+        values.push(0.0);
+        cuts.push(([lo, hi], s));
+        let m = (points.len() - 1) as u32;
+        cut_of[3 * t + k] = m;
+        let n = base.neighbours[t][k];
+        if n != NONE {
+            if let Some(j) = base.mirror_edge(t, n as usize) {
+                cut_of[3 * n as usize + j] = m;
+            }
+        }
+        m
     };
     let mut tris: Vec<[u32; 3]> = Vec::with_capacity(base.n_tris() + base.n_tris() / 4);
     let mut tri_ref: Vec<i32> = Vec::with_capacity(tris.capacity());
@@ -246,7 +260,7 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
                 // A vertex on the level (s = 0) and the opposite edge cut.
                 let i = (0..3).find(|&i| is_cut(i)).unwrap_or(0);
                 let (z, a, b) = (tri[i], tri[next(i)], tri[prev(i)]);
-                let m = cut(a, b, &mut points, &mut values);
+                let m = cut(t, i, &mut points, &mut values);
                 push([z, a, m], label(s[next(i)]));
                 push([z, m, b], label(s[prev(i)]));
             }
@@ -254,8 +268,8 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
                 // The lone vertex i is opposite the uncut edge.
                 let i = (0..3).find(|&i| !is_cut(i)).unwrap_or(0);
                 let (a, b, c) = (tri[i], tri[next(i)], tri[prev(i)]);
-                let p = cut(a, b, &mut points, &mut values);
-                let q = cut(c, a, &mut points, &mut values);
+                let p = cut(t, prev(i), &mut points, &mut values);
+                let q = cut(t, next(i), &mut points, &mut values);
                 push([a, p, q], label(s[i]));
                 let other = label(s[next(i)]);
                 let d = |x: u32, y: u32| (points[x as usize] - points[y as usize]).length_squared();
