@@ -82,9 +82,9 @@ fn tiny_crosscheck_converges_and_writes() {
     assert!(e2 < 0.1 * e1 && e2 < 6.05e-4);
 
     // Curvature of a circle and of the ellipse from a non-distance function: every back end
-    // converges at order at least 1. Measured: circle adapted (quartic fit) 3.2e-4 -> 8.4e-5
-    // (1.95), polygon 2.6e-2 -> 6.4e-3 (2.03), arcs 8.8e-3 -> 2.4e-3 (1.91); ellipse polygon
-    // 2.25, arcs 1.80.
+    // converges at order at least 1. Measured: circle adapted (quartic fit) 2.3e-4 -> 6.8e-5
+    // (1.79), polygon 2.6e-2 -> 6.4e-3 (2.03), arcs 8.8e-3 -> 2.4e-3 (1.91); ellipse adapted
+    // 1.9e-3 -> 5.2e-4 (1.88), polygon 2.25, arcs 1.80.
     for name in ["curvature_circle", "curvature_ellipse"] {
         let k = problem(&report, name);
         for b in k.backends() {
