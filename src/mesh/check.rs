@@ -339,3 +339,30 @@ impl<P> TriMesh<P> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fan that winds twice around its vertex (seven triangles of 4π/7 each) is caught by
+    /// the orientation-predicate test; one winding of the same triangles is valid.
+    #[test]
+    fn a_fan_winding_twice_is_overlapping() {
+        let fan = |turns: f64, n: usize| {
+            let mut points = vec![DVec2::ZERO];
+            let step = turns * 2.0 * std::f64::consts::PI / n as f64;
+            points.extend((0..n).map(|k| DVec2::from_angle(step * k as f64)));
+            let tris = (0..n)
+                .map(|k| [0, 1 + k as u32, 1 + ((k + 1) % n) as u32])
+                .collect();
+            Mesh2::from_triangles(points, tris).unwrap()
+        };
+        fan(1.0, 7).check().unwrap();
+        match fan(2.0, 7).check() {
+            Err(crate::error::Error::InvalidMesh(MeshDefect::OverlappingTriangles { vertex })) => {
+                assert_eq!(vertex, 0)
+            }
+            other => panic!("expected an overlapping fan, got {other:?}"),
+        }
+    }
+}
