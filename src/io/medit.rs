@@ -411,7 +411,7 @@ pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
     // with the smaller index), without collecting every edge of the mesh.
     let written = |t: usize, i: usize| {
         let nb = mesh.neighbours[t][i];
-        (nb == NONE || nb as usize > t) && (nb == NONE || mesh.edge_ref[t][i] != 0)
+        nb == NONE || (nb as usize > t && mesh.edge_ref[t][i] != 0)
     };
     let n_edges = mesh
         .live_tris()

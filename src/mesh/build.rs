@@ -206,8 +206,8 @@ pub(crate) fn build_adjacency(tris: &[[u32; 3]]) -> Result<Vec<[u32; 3]>> {
     let max_of = |h: u64| (h >> 32) as u32;
     let mut nb = vec![[NONE; 3]; tris.len()];
     let mut lo = 0usize;
-    for v in 0..nv {
-        let hi = start[v] as usize;
+    for (v, &end) in start.iter().enumerate().take(nv) {
+        let hi = end as usize;
         let group = &mut half[lo..hi];
         lo = hi;
         // Insertion sort by (max, t, i): the groups are small (a vertex's edges).

@@ -157,6 +157,10 @@ impl Mesh2 {
     }
 }
 
+/// The overlap test of [`Mesh2::check`] for a vertex; it walks the vertex's fan and counts the
+/// triangles it meets in its second argument.
+type OverlapTest<'a> = &'a dyn Fn(usize, &mut u32) -> bool;
+
 impl<P> TriMesh<P> {
     /// Verifies the invariants that do not involve coordinates and reports the first defect
     /// found: array lengths, index ranges, distinct corners, symmetric adjacency that matches
@@ -305,15 +309,15 @@ impl<P> TriMesh<P> {
     /// it (a single manifold fan), and with `overlapping` (the test of [`Mesh2::check`], which
     /// walks the fan itself and counts its triangles in `walked`) the angles around it must not
     /// exceed a full turn.
-    fn check_fans(&self, overlapping: Option<&dyn Fn(usize, &mut u32) -> bool>) -> Result<()> {
+    fn check_fans(&self, overlapping: Option<OverlapTest<'_>>) -> Result<()> {
         let mut uses = vec![0u32; self.points.len()];
         for t in self.live_tris() {
             for &v in &self.tris[t] {
                 uses[v as usize] += 1;
             }
         }
-        for v in 0..self.points.len() {
-            if uses[v] == 0 {
+        for (v, &used) in uses.iter().enumerate() {
+            if used == 0 {
                 continue;
             }
             // The fan is walked once: by the overlap test (which counts it) or here.
@@ -325,7 +329,7 @@ impl<P> TriMesh<P> {
                     false
                 }
             };
-            if walked != uses[v] {
+            if walked != used {
                 return Err(MeshDefect::BadVertexData {
                     vertex: v,
                     detail: "the triangles around the vertex do not form a single fan (non-manifold vertex)",
