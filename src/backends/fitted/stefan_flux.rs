@@ -54,10 +54,11 @@ fn solve_small(a: &mut [[f64; 5]; 5], b: &mut [f64; 5], k: usize) -> Option<[f64
         }
         a.swap(c, p);
         b.swap(c, p);
+        let pivot = a[c];
         for r in c + 1..k {
-            let f = a[r][c] / a[c][c];
-            for j in c..k {
-                a[r][j] -= f * a[c][j];
+            let f = a[r][c] / pivot[c];
+            for (x, &y) in a[r][c..k].iter_mut().zip(&pivot[c..k]) {
+                *x -= f * y;
             }
             b[r] -= f * b[c];
         }
