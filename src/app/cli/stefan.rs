@@ -1,7 +1,7 @@
 //! `anisomesh stefan`: the Stefan problem on the interface-fitted mesh (001 §6).
 
 use crate::app::repro::stefan::{frank, paper};
-use anisomesh::backends::fitted::{Anisotropy, Coefficient, VelocityExtension};
+use anisomesh::backends::fitted::{Anisotropy, Coefficient, StefanFlux, VelocityExtension};
 use anisomesh::error::{Error, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -41,6 +41,11 @@ pub struct StefanArgs {
     /// averaged (length-weighted mean over 3h).
     #[arg(long, default_value = "harmonic", value_parser = ["ls", "harmonic", "averaged"])]
     extension: String,
+    /// One-sided gradients of the Stefan condition v_n = -[dT/dn] (001 (6.4)): quadratic
+    /// (least-squares quadratic per side over two rings, second order; the default for frank) or
+    /// p1 (area-weighted mean of the P1 gradients, first order; the default for pentagon, star).
+    #[arg(long, value_parser = ["p1", "quadratic"])]
+    flux: Option<String>,
     /// Output directory (stefan.json, stefan.csv, figures).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -51,6 +56,15 @@ fn extension(a: &StefanArgs, h: f64) -> VelocityExtension {
         "averaged" => VelocityExtension::Averaged { smoothing: 3.0 * h },
         "ls" => VelocityExtension::LeastSquares,
         _ => VelocityExtension::Harmonic,
+    }
+}
+
+fn flux(a: &StefanArgs) -> StefanFlux {
+    match a.flux.as_deref() {
+        Some("quadratic") => StefanFlux::Quadratic,
+        Some(_) => StefanFlux::P1Mean,
+        None if a.case == "frank" => StefanFlux::Quadratic,
+        None => StefanFlux::P1Mean,
     }
 }
 
@@ -68,7 +82,7 @@ pub fn run(a: StefanArgs) -> Result<()> {
     let mut rows = Vec::new();
     for &n in &ns {
         let ext = extension(&a, 4.0 / n as f64);
-        let mut row = frank::run(&[n], t_end, ext)?.remove(0);
+        let mut row = frank::run(&[n], t_end, ext, flux(&a))?.remove(0);
         if let Some(prev) = rows.last() {
             let prev: &frank::FrankRow = prev;
             row.order =
@@ -77,11 +91,12 @@ pub fn run(a: StefanArgs) -> Result<()> {
         rows.push(row);
     }
     println!(
-        "Frank's circle, S0 = {}, t {} -> {}, (-2, 2)^2, dt ~ 0.2 h, extension {}",
+        "Frank's circle, S0 = {}, t {} -> {}, (-2, 2)^2, dt ~ 0.2 h, extension {}, flux {:?}",
         frank::S0,
         frank::T0,
         t_end,
-        a.extension
+        a.extension,
+        flux(&a)
     );
     println!(
         "{:>5} {:>9} {:>6} {:>11} {:>11} {:>11} {:>6} {:>8} {:>6} {:>8}",
@@ -161,12 +176,13 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         eps_c,
         eps_v: coef(a.eps_v.unwrap_or(default_eps), "eps-v")?,
         extension: ext,
+        flux: flux(a),
         snapshots: if star { 4 } else { 8 },
     };
     let rep = paper::run(&case)?;
     println!(
-        "{} seed, {n} x {n} cells, dt = {dt}, {} steps, eps_C = {}, eps_V = {}, extension {}",
-        a.case, rep.steps, rep.eps_c, rep.eps_v, rep.extension
+        "{} seed, {n} x {n} cells, dt = {dt}, {} steps, eps_C = {}, eps_V = {}, extension {}, flux {}",
+        a.case, rep.steps, rep.eps_c, rep.eps_v, rep.extension, rep.flux
     );
     println!(
         "{:>7} {:>6} {:>10} {:>8} {:>8} {:>8} {:>8} {:>6} {:>4}",

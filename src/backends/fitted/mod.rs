@@ -16,6 +16,7 @@ mod extension;
 mod fit;
 mod reinit;
 mod stefan;
+mod stefan_flux;
 
 pub use backend::{FittedBackend, FittedOptions, FittedRedistancing};
 pub use curvature::{interface_curvature, vertex_curvature, VertexCurvature};
@@ -27,6 +28,7 @@ pub use fit::{
 };
 pub use reinit::{poisson_reinit, PoissonOutput, PoissonReinit};
 pub use stefan::{
-    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanOptions, StefanState,
+    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanFlux, StefanOptions, StefanState,
     StefanStepReport, VelocityExtension,
 };
+pub use stefan_flux::stefan_velocity_quadratic;

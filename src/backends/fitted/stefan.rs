@@ -20,6 +20,7 @@
 use super::curvature::vertex_curvature;
 use super::extension::{extend_velocity, ExtensionKind, ExtensionOptions};
 use super::fit::{fit, FitOptions, FittedMesh, REF_INSIDE};
+use super::stefan_flux::stefan_velocity_quadratic;
 use crate::error::{Error, Result};
 use crate::flows::stefan::{heat_step, stefan_velocity};
 use crate::geom::{simplex, DVec2};
@@ -188,6 +189,19 @@ pub struct StefanOptions<'a> {
     /// `O(h² κ)` per step (the P1 interpolant of the distance to a polygon lies outside it near
     /// its corners).
     pub keep_interface: bool,
+    /// How the one-sided normal derivatives of the Stefan condition (6.4) are computed.
+    pub flux: StefanFlux,
+}
+
+/// The one-sided gradients of the Stefan condition (001 (6.4)) at the interface vertices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StefanFlux {
+    /// The area-weighted mean of each side's P1 gradients around the vertex
+    /// ([`crate::flows::stefan::stefan_velocity`]): first order, biased where `∂²T/∂n² ≠ 0`.
+    P1Mean,
+    /// Each side's least-squares quadratic through the vertex over two rings
+    /// ([`super::stefan_velocity_quadratic`]): second order for smooth `T`.
+    Quadratic,
 }
 
 impl<'a> StefanOptions<'a> {
@@ -210,6 +224,7 @@ impl<'a> StefanOptions<'a> {
             eps_v: Coefficient::ZERO,
             boundary: None,
             keep_interface: false,
+            flux: StefanFlux::P1Mean,
         }
     }
 }
@@ -372,7 +387,10 @@ pub fn stefan_step(
     }
     let (temp, cg) = heat_step(m, &fixed, &values, &temp, o.dt)?;
     // Step 5: the Stefan condition (6.4).
-    let vn = stefan_velocity(m, REF_INSIDE, &on, &normals, &temp)?;
+    let vn = match o.flux {
+        StefanFlux::P1Mean => stefan_velocity(m, REF_INSIDE, &on, &normals, &temp)?,
+        StefanFlux::Quadratic => stefan_velocity_quadratic(m, REF_INSIDE, &on, &normals, &temp)?,
+    };
     let iface: Vec<usize> = (0..n).filter(|&v| on[v]).collect();
     let max_vn = iface.iter().fold(0.0f64, |a, &v| a.max(vn[v].abs()));
     // Steps 6–7: extension, unrefinement.

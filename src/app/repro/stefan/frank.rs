@@ -1,13 +1,13 @@
 //! Frank's expanding circle (S0 = 1.56) in (−2, 2)² from t0 = 0.25 (R = S0 √t0 = 0.78) to t1:
 //! the Stefan loop of [`anisomesh::backends::fitted::stefan_step`] on uniform n × n base meshes
-//! with Δt ≈ 0.2 h (a chosen velocity extension), the temperature initialised from the exact solution and held at the exact
+//! with Δt ≈ 0.2 h (a chosen velocity extension and one-sided gradient of the Stefan condition), the temperature initialised from the exact solution and held at the exact
 //! value on the outer boundary (Dirichlet). Reported per mesh: the mean and largest
 //! `||p| − R(t)|` over the interface vertices and `|√(A/π) − R(t)|` at t1, with the observed order
 //! between successive meshes; the radius against time for the figure.
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
 use anisomesh::backends::fitted::{
-    circle_deviation, stefan_step, StefanOptions, StefanState, VelocityExtension,
+    circle_deviation, stefan_step, StefanFlux, StefanOptions, StefanState, VelocityExtension,
 };
 use anisomesh::error::{Error, Result};
 use anisomesh::flows::stefan::FrankCircle;
@@ -53,7 +53,12 @@ pub struct FrankRow {
 }
 
 /// Runs one mesh.
-pub fn run_one(n: usize, t1: f64, extension: VelocityExtension) -> Result<FrankRow> {
+pub fn run_one(
+    n: usize,
+    t1: f64,
+    extension: VelocityExtension,
+    flux: StefanFlux,
+) -> Result<FrankRow> {
     if n < 4 || !(t1.is_finite() && t1 > T0) {
         return Err(Error::InvalidInput(format!(
             "Frank's circle: need n >= 4 and a finite end time above {T0} (got n = {n}, t1 = {t1})"
@@ -82,6 +87,7 @@ pub fn run_one(n: usize, t1: f64, extension: VelocityExtension) -> Result<FrankR
     let bc = |p: DVec2, t: f64| fc.temperature(p.length(), t);
     let mut opts = StefanOptions::new(dt, h);
     opts.extension = extension;
+    opts.flux = flux;
     opts.boundary = Some(&bc);
     let start = Instant::now();
     let (mut fitted, mut cg, mut max_vn) = (0usize, 0usize, 0.0);
@@ -113,10 +119,15 @@ pub fn run_one(n: usize, t1: f64, extension: VelocityExtension) -> Result<FrankR
 }
 
 /// Runs the refinement table; fills the observed orders.
-pub fn run(ns: &[usize], t1: f64, extension: VelocityExtension) -> Result<Vec<FrankRow>> {
+pub fn run(
+    ns: &[usize],
+    t1: f64,
+    extension: VelocityExtension,
+    flux: StefanFlux,
+) -> Result<Vec<FrankRow>> {
     let mut rows: Vec<FrankRow> = Vec::new();
     for &n in ns {
-        let mut row = run_one(n, t1, extension)?;
+        let mut row = run_one(n, t1, extension, flux)?;
         if let Some(prev) = rows.last() {
             row.order =
                 (prev.radius_error / row.radius_error).ln() / (n as f64 / prev.n as f64).ln();

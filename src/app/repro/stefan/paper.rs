@@ -9,7 +9,7 @@
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
 use anisomesh::backends::fitted::{
-    fit, stefan_step, FitOptions, StefanOptions, StefanState, VelocityExtension,
+    fit, stefan_step, FitOptions, StefanFlux, StefanOptions, StefanState, VelocityExtension,
 };
 use anisomesh::backends::fitted::{Anisotropy, Coefficient};
 use anisomesh::error::{Error, Result};
@@ -55,6 +55,8 @@ pub struct Case {
     pub eps_v: Coefficient,
     /// Velocity extension.
     pub extension: VelocityExtension,
+    /// One-sided gradients of the Stefan condition.
+    pub flux: StefanFlux,
     /// Number of snapshot intervals.
     pub snapshots: usize,
 }
@@ -104,6 +106,8 @@ pub struct PaperReport {
     pub eps_v: String,
     /// The velocity extension.
     pub extension: String,
+    /// The one-sided gradients of the Stefan condition.
+    pub flux: String,
     /// Wall time of the loop, seconds.
     pub seconds: f64,
     /// Snapshots at t = 0 and at equal intervals.
@@ -220,6 +224,7 @@ pub fn run(c: &Case) -> Result<PaperReport> {
     let h = width / n as f64;
     let mut opts = StefanOptions::new(dt, h);
     opts.extension = c.extension;
+    opts.flux = c.flux;
     opts.eps_c = c.eps_c;
     opts.eps_v = c.eps_v;
     let steps = (t_end / dt).round().max(1.0) as usize;
@@ -241,6 +246,7 @@ pub fn run(c: &Case) -> Result<PaperReport> {
         eps_c: describe(&c.eps_c),
         eps_v: describe(&c.eps_v),
         extension: format!("{:?}", c.extension),
+        flux: format!("{:?}", c.flux),
         seconds: start.elapsed().as_secs_f64(),
         snapshots: snaps,
     })
