@@ -44,6 +44,7 @@ mod tet;
 mod tri;
 
 mod discrete;
+mod files3;
 mod driver;
 pub mod estimate;
 pub mod features;
@@ -53,6 +54,9 @@ mod run;
 mod shape;
 pub mod sources;
 
+pub use files3::{
+    run3_graded, run3_to_field, shape_metric3, DiscreteLevelSet3, MetricField3, GRADED_ROUNDS,
+};
 pub use driver::{
     adapt, validate_inputs, AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport,
 };

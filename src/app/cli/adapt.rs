@@ -6,6 +6,9 @@ use super::shape::chosen_shape;
 use crate::app::repro::adapt_run::{self, AdaptRunOptions};
 use anisomesh::adapt::{AdaptTarget, LevelSetMetric, RunOptions, DEFAULT_MAX_VERTICES};
 use anisomesh::io::{self, SolField};
+use super::adapt3::Sol3;
+use super::user_files::{check_metric, check_sizes, read_input_mesh, read_sol_checked, InputMesh};
+use anisomesh::metric::Sym2;
 use anisomesh::{DVec2, Error, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -38,10 +41,15 @@ pub struct AdaptArgs {
     /// Isotropic version of the metric (for comparison).
     #[arg(long)]
     iso: bool,
-    /// With --sol holding a metric: grade it during the adaptation with this growth factor
-    /// (> 1; as mmg2d's -hgrad, e.g. 1.3). Default: the metric as given.
-    #[arg(long, requires = "sol")]
+    /// Grade the metric with this growth factor (> 1; as mmg's -hgrad, e.g. 1.3). 2D: a metric
+    /// given with --sol, during the adaptation. 3D: any metric (shape, level set, metric or
+    /// sizes file), over the tetrahedra. Default: the metric as given.
+    #[arg(long)]
     hgrad: Option<f64>,
+    /// With --sol holding a scalar field: read it as element sizes (an isotropic size map, as
+    /// mmg reads a scalar .sol without -ls) instead of a level set.
+    #[arg(long, requires = "sol")]
+    sizes: bool,
     /// Refuse a run whose metric asks for more vertices than this (estimated from its
     /// complexity before adapting).
     #[arg(long, default_value_t = DEFAULT_MAX_VERTICES)]
@@ -76,25 +84,99 @@ pub(crate) fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
 
 /// Runs the job and prints the report.
 pub fn run(a: AdaptArgs) -> Result<()> {
-    if a.dim == 3 {
-        if a.input.is_some() || a.domain.is_some() || a.target_vertices.is_some() {
+    let (metric3, iso) = (a.metric.clone(), a.iso);
+    let metric3 = move |b| LevelSetMetric {
+        isotropic: iso,
+        ..metric3.apply(b)
+    };
+    let input = match &a.input {
+        Some(p) => Some(read_input_mesh(p)?),
+        None => None,
+    };
+    if let (Some(InputMesh::Tet(mesh)), Some(mesh_path), Some(sol_path)) =
+        (&input, &a.input, &a.sol)
+    {
+        if a.target_vertices.is_some() || a.fit {
             return Err(Error::InvalidInput(
-                "--dim 3 adapts [-1, 1]^3 to --shape or --expr; --input, --domain and \
-                 --target-vertices are 2D options"
-                    .into(),
+                "--target-vertices and --fit are 2D options; this mesh is tetrahedral".into(),
             ));
         }
-        let (metric, iso) = (a.metric.clone(), a.iso);
-        return super::adapt3::run(
-            a.shape.as_deref(),
-            a.expr.as_deref(),
-            |b| LevelSetMetric {
-                isotropic: iso,
-                ..metric.apply(b)
-            },
+        let sol = read_sol_checked(sol_path, mesh.n_points(), 3)?;
+        let sol = match sol.fields.into_iter().next() {
+            Some(SolField::Tensor3(_)) if a.metric.has_band() => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: --band sets the band of the geometric metric; this file holds a metric",
+                    sol_path.display()
+                )));
+            }
+            Some(SolField::Tensor3(m)) => Sol3::Metric(check_metric(
+                sol_path,
+                m.iter().map(io::sym3_from_file).collect(),
+            )?),
+            Some(SolField::Scalar(h)) if a.sizes => {
+                check_sizes(sol_path, &h)?;
+                Sol3::Sizes(h)
+            }
+            Some(SolField::Scalar(u)) => {
+                if let Some(v) = u.iter().position(|x| !x.is_finite()) {
+                    return Err(Error::InvalidField {
+                        name: sol_path.display().to_string(),
+                        msg: format!("non-finite value {} at vertex {}", u[v], v + 1),
+                    });
+                }
+                Sol3::LevelSet(u)
+            }
+            _ => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: expected a scalar level set, sizes (--sizes) or a 3D metric (symmetric \
+                     tensor, six entries) field",
+                    sol_path.display()
+                )))
+            }
+        };
+        let stem = mesh_path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "input".into());
+        return super::adapt3::run_files(
+            mesh,
+            &stem,
+            sol,
+            metric3,
+            a.hgrad,
             a.max_vertices,
             &a.output,
         );
+    }
+    if a.dim == 3 {
+        if a.input.is_some() {
+            return Err(Error::InvalidInput(format!(
+                "--dim 3: {} is a 2D mesh",
+                a.input.as_deref().unwrap_or(std::path::Path::new("")).display()
+            )));
+        }
+        if a.domain.is_some() || a.target_vertices.is_some() {
+            return Err(Error::InvalidInput(
+                "--dim 3 adapts [-1, 1]^3 to --shape or --expr; --domain and --target-vertices \
+                 are 2D options"
+                    .into(),
+            ));
+        }
+        return super::adapt3::run(
+            a.shape.as_deref(),
+            a.expr.as_deref(),
+            metric3,
+            a.hgrad,
+            a.max_vertices,
+            &a.output,
+        );
+    }
+    if a.hgrad.is_some() && a.sol.is_none() {
+        return Err(Error::InvalidInput(
+            "--hgrad: in 2D it grades a metric given with --input/--sol (shapes are graded \
+             already)"
+                .into(),
+        ));
     }
     let mut opts = AdaptRunOptions {
         run: RunOptions {
@@ -109,15 +191,17 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         out_dir: a.output.clone(),
         ..AdaptRunOptions::default()
     };
-    let input = if let (Some(mesh_path), Some(sol_path)) = (&a.input, &a.sol) {
-        let mesh = io::read_mesh(mesh_path)?;
-        let sol = io::read_sol_for(sol_path, mesh.n_points())?;
+    let input = if let (Some(InputMesh::Tri(mesh)), Some(mesh_path), Some(sol_path)) =
+        (input, &a.input, &a.sol)
+    {
+        let mesh = *mesh;
+        let sol = read_sol_checked(sol_path, mesh.n_points(), 2)?;
         opts.name = mesh_path
             .file_stem()
             .map(|s| format!("{}_adapted", s.to_string_lossy()))
             .unwrap_or_else(|| "adapted".into());
         match sol.fields.into_iter().next() {
-            Some(SolField::Scalar(_)) if a.hgrad.is_some() => {
+            Some(SolField::Scalar(_)) if a.hgrad.is_some() && !a.sizes => {
                 return Err(Error::InvalidInput(format!(
                     "{}: --hgrad grades a metric; this file holds a scalar level set",
                     sol_path.display()
@@ -128,6 +212,13 @@ pub fn run(a: AdaptArgs) -> Result<()> {
                     "{}: --band sets the band of the geometric metric; this file holds a metric",
                     sol_path.display()
                 )))
+            }
+            Some(SolField::Scalar(h)) if a.sizes => {
+                check_sizes(sol_path, &h)?;
+                AdaptTarget::Metric {
+                    mesh,
+                    metric: h.iter().map(|&h| Sym2::iso(h)).collect(),
+                }
             }
             Some(SolField::Scalar(u)) => AdaptTarget::LevelSet { mesh, u },
             Some(SolField::Tensor2(metric)) => AdaptTarget::Metric { mesh, metric },
