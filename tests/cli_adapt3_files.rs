@@ -369,3 +369,43 @@ fn bad_three_dimensional_input_is_one_typed_line() {
         "IN,OUT",
     );
 }
+
+/// `metric` on a tetrahedral mesh writes the metric `adapt --input --sol` adapts to: 004 eq. (6)
+/// of the input's zero level with adapt's 3D defaults and flags, graded as `--hgrad` grades it.
+#[test]
+fn the_metric_command_writes_the_metric_adapt_uses() {
+    use anisomesh::adapt::{shape_metric3, DiscreteLevelSet3, Run3Options};
+    let d = dir("metric-cmd");
+    let (mp, sp) = (d.join("cube.mesh"), d.join("u.sol"));
+    let mesh = kuhn_file(&mp, 6, -1.0, 1.0);
+    let u: Vec<f64> = mesh.points.iter().map(|p| p.length() - 0.5).collect();
+    io::write_sol(&sp, &Sol::scalar_dim(3, u.clone())).unwrap();
+    let shape = DiscreteLevelSet3::new(&mesh.points, &mesh.tets, &u).unwrap();
+    for (hgrad, eps) in [(None, "2e-2"), (Some("1.5"), "1e-2")] {
+        let out = d.join(format!("m{}.sol", hgrad.unwrap_or("")));
+        let mut args = vec![
+            "metric", "--input", s(&mp), "--sol", s(&sp), "--eps", eps, "-o", s(&out),
+        ];
+        if let Some(g) = hgrad {
+            args.extend_from_slice(&["--hgrad", g]);
+        }
+        anisomesh_ok(&args);
+        let sol = io::read_sol(&out).unwrap();
+        let io::SolField::Tensor3(t) = &sol.fields[0] else {
+            panic!("no 3D tensor field")
+        };
+        let lm = anisomesh::adapt::LevelSetMetric {
+            eps: eps.parse().unwrap(),
+            band: 5.0 * eps.parse::<f64>().unwrap(),
+            ..Run3Options::default().metric
+        };
+        let beta = hgrad.map(|g| g.parse().unwrap());
+        let want = shape_metric3(&shape, &lm, &mesh.points, &mesh.tets, beta).unwrap();
+        for (a, b) in t.iter().zip(&want) {
+            let b = io::sym3_to_file(b);
+            for k in 0..6 {
+                assert!((a[k] - b[k]).abs() <= 1e-15 * b[k].abs().max(1.0), "{a:?} {b:?}");
+            }
+        }
+    }
+}
