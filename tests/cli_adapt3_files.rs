@@ -59,13 +59,8 @@ fn a_metric_file_is_conformed_to_and_the_box_kept() {
     // Anisotropic and constant: sizes 0.25, 0.25, 0.08 along x, y, z (file order xx xy yy xz
     // yz zz).
     let m = Sym3::new(16.0, 0.0, 0.0, 16.0, 0.0, 1.0 / 0.0064);
-    tensor_sol(
-        &sp,
-        &vec![io::sym3_to_file(&m); mesh.n_points()],
-    );
-    let text = anisomesh_ok(&[
-        "adapt", "--input", s(&mp), "--sol", s(&sp), "-o", s(&out),
-    ]);
+    tensor_sol(&sp, &vec![io::sym3_to_file(&m); mesh.n_points()]);
+    let text = anisomesh_ok(&["adapt", "--input", s(&mp), "--sol", s(&sp), "-o", s(&out)]);
     assert!(text.contains("metric read from file"), "{text}");
     let r = read3(&out.join("box_adapted.mesh"));
     let vol: f64 = r
@@ -95,19 +90,38 @@ fn sizes_and_gradation_from_a_scalar_file() {
     io::write_sol(&sp, &Sol::scalar_dim(3, h)).unwrap();
     let out = d.join("out");
     let text = anisomesh_ok(&[
-        "adapt", "--input", s(&mp), "--sol", s(&sp), "--sizes", "-o", s(&out),
+        "adapt",
+        "--input",
+        s(&mp),
+        "--sol",
+        s(&sp),
+        "--sizes",
+        "-o",
+        s(&out),
     ]);
     assert!(text.contains("sizes read from file"), "{text}");
     let r = read3(&out.join("box_adapted.mesh"));
     // The sizes are interpolated geometrically between the input's vertices; measured in the
     // linear size field the lengths stay near 1.
-    let m: Vec<Sym3> = r.points.iter().map(|p| Sym3::iso(0.1 + 0.25 * p.x)).collect();
+    let m: Vec<Sym3> = r
+        .points
+        .iter()
+        .map(|p| Sym3::iso(0.1 + 0.25 * p.x))
+        .collect();
     let c = conformity(&r.points, &r.tets, &m).unwrap();
     assert!(c.edge_length_in_range > 0.8, "{c:?}");
     // Graded with a slow growth, the elements near x = 1 are smaller: more vertices.
     let graded = d.join("graded");
     anisomesh_ok(&[
-        "adapt", "--input", s(&mp), "--sol", s(&sp), "--sizes", "--hgrad", "1.05", "-o",
+        "adapt",
+        "--input",
+        s(&mp),
+        "--sol",
+        s(&sp),
+        "--sizes",
+        "--hgrad",
+        "1.05",
+        "-o",
         s(&graded),
     ]);
     let g = read3(&graded.join("box_adapted.mesh"));
@@ -127,8 +141,19 @@ fn a_level_set_file_is_adapted_to_and_measured_against_the_sphere() {
     let u: Vec<f64> = mesh.points.iter().map(|p| p.length() - 0.5).collect();
     io::write_sol(&sp, &Sol::scalar_dim(3, u)).unwrap();
     let text = anisomesh_ok(&[
-        "adapt", "--input", s(&mp), "--sol", s(&sp), "--eps", "1e-2", "--hmin", "0.04",
-        "--hmax", "0.4", "-o", s(&out),
+        "adapt",
+        "--input",
+        s(&mp),
+        "--sol",
+        s(&sp),
+        "--eps",
+        "1e-2",
+        "--hmin",
+        "0.04",
+        "--hmax",
+        "0.4",
+        "-o",
+        s(&out),
     ]);
     assert!(text.contains("input volume"), "{text}");
     let stats = |args: &[&str]| -> serde_json::Value {
@@ -138,12 +163,25 @@ fn a_level_set_file_is_adapted_to_and_measured_against_the_sphere() {
     };
     let a = out.join("cube_adapted.mesh");
     let c = stats(&[
-        "measure", s(&a), "--shape", "sphere", "--level-set",
-        s(&out.join("cube_adapted.sol")), "--json", "--sampling-level", "5",
+        "measure",
+        s(&a),
+        "--shape",
+        "sphere",
+        "--level-set",
+        s(&out.join("cube_adapted.sol")),
+        "--json",
+        "--sampling-level",
+        "5",
     ]);
     // The input's own P1 zero level (chords of the 10³ mesh) against the sphere.
     let i = stats(&[
-        "measure", s(&mp), "--shape", "sphere", "--json", "--sampling-level", "5",
+        "measure",
+        s(&mp),
+        "--shape",
+        "sphere",
+        "--json",
+        "--sampling-level",
+        "5",
     ]);
     // The adapted zero level follows the input's within eps = 1e-2 (004 eq. (6)): its distances
     // to the sphere and its volume are the input's, up to that.
@@ -153,7 +191,10 @@ fn a_level_set_file_is_adapted_to_and_measured_against_the_sphere() {
     }
     // (The median from the discrete side depends on how the triangles sample the surface.)
     let d = "exact_to_discrete";
-    assert!((get(&c, d, "median") - get(&i, d, "median")).abs() < 5e-3, "{c}\n{i}");
+    assert!(
+        (get(&c, d, "median") - get(&i, d, "median")).abs() < 5e-3,
+        "{c}\n{i}"
+    );
     let (va, vi) = (c["volume"].as_f64().unwrap(), i["volume"].as_f64().unwrap());
     assert!((va / vi - 1.0).abs() < 0.02, "{va} vs {vi}");
 }
@@ -167,7 +208,13 @@ fn measure_shape_matches_brute_force_on_the_sphere() {
     let mesh = kuhn_file(&mp, 9, -1.0, 1.0);
     let u: Vec<f64> = mesh.points.iter().map(|p| p.length() - 0.5).collect();
     let json = anisomesh_ok(&[
-        "measure", s(&mp), "--shape", "sphere", "--json", "--sampling-level", "3",
+        "measure",
+        s(&mp),
+        "--shape",
+        "sphere",
+        "--json",
+        "--sampling-level",
+        "3",
     ]);
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     let c = &v["comparison"];
@@ -185,7 +232,11 @@ fn measure_shape_matches_brute_force_on_the_sphere() {
     dd.sort_by(f64::total_cmp);
     let max = c["discrete_to_exact"]["max"].as_f64().unwrap();
     let med = c["discrete_to_exact"]["median"].as_f64().unwrap();
-    assert!((max - dd[dd.len() - 1]).abs() < 1e-9, "{max} vs {}", dd[dd.len() - 1]);
+    assert!(
+        (max - dd[dd.len() - 1]).abs() < 1e-9,
+        "{max} vs {}",
+        dd[dd.len() - 1]
+    );
     assert!((med - dd[dd.len().div_ceil(2) - 1]).abs() < 1e-9);
     // Exact → discrete: points of the sphere to the nearest triangle by brute force, over the
     // icosphere samples (vertices and projected centroids).
@@ -200,9 +251,8 @@ fn measure_shape_matches_brute_force_on_the_sphere() {
         .map(|&q| {
             tris.iter()
                 .map(|[a, b, cc]| {
-                    let p = anisomesh::levelset::triangulated::closest::closest_point(
-                        q, *a, *b, *cc,
-                    );
+                    let p =
+                        anisomesh::levelset::triangulated::closest::closest_point(q, *a, *b, *cc);
                     (q - p.0).length()
                 })
                 .fold(f64::INFINITY, f64::min)
@@ -235,7 +285,13 @@ fn measure_shape_matches_brute_force_on_the_sphere() {
     let lp = d.join("labelled.mesh");
     io::write_medit3(&lp, &labelled).unwrap();
     let json = anisomesh_ok(&[
-        "measure", s(&lp), "--shape", "sphere", "--json", "--sampling-level", "3",
+        "measure",
+        s(&lp),
+        "--shape",
+        "sphere",
+        "--json",
+        "--sampling-level",
+        "3",
     ]);
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert!(v["discrete_surface"]
@@ -274,10 +330,7 @@ fn bad_three_dimensional_input_is_one_typed_line() {
     let mut t = vec![good; n];
     t[6][2] = f64::NAN;
     tensor_sol(&sp, &t);
-    assert_clean_error(
-        &run(&["--input", s(&mp), "--sol", s(&sp)]),
-        "vertex 7",
-    );
+    assert_clean_error(&run(&["--input", s(&mp), "--sol", s(&sp)]), "vertex 7");
     let sp = d.join("indefinite.sol");
     let mut t = vec![good; n];
     t[3] = [1.0, 2.0, 1.0, 0.0, 0.0, 1.0];
@@ -339,17 +392,11 @@ fn bad_three_dimensional_input_is_one_typed_line() {
     surf.tet_ref.clear();
     let sm = d.join("surface.mesh");
     io::write_medit3(&sm, &surf).unwrap();
-    assert_clean_error(
-        &run(&["--input", s(&sm), "--sol", s(&sp)]),
-        "surface mesh",
-    );
+    assert_clean_error(&run(&["--input", s(&sm), "--sol", s(&sp)]), "surface mesh");
     // A level set without a zero level.
     let sp = d.join("positive.sol");
     io::write_sol(&sp, &Sol::scalar_dim(3, vec![1.0; n])).unwrap();
-    assert_clean_error(
-        &run(&["--input", s(&mp), "--sol", s(&sp)]),
-        "no zero level",
-    );
+    assert_clean_error(&run(&["--input", s(&mp), "--sol", s(&sp)]), "no zero level");
     // --dim 3 with a 2D mesh.
     let sp = d.join("u2.sol");
     io::write_sol(&sp, &Sol::scalar(vec![1.0; sq.n_points()])).unwrap();
@@ -384,7 +431,15 @@ fn the_metric_command_writes_the_metric_adapt_uses() {
     for (hgrad, eps) in [(None, "2e-2"), (Some("1.5"), "1e-2")] {
         let out = d.join(format!("m{}.sol", hgrad.unwrap_or("")));
         let mut args = vec![
-            "metric", "--input", s(&mp), "--sol", s(&sp), "--eps", eps, "-o", s(&out),
+            "metric",
+            "--input",
+            s(&mp),
+            "--sol",
+            s(&sp),
+            "--eps",
+            eps,
+            "-o",
+            s(&out),
         ];
         if let Some(g) = hgrad {
             args.extend_from_slice(&["--hgrad", g]);
@@ -404,7 +459,10 @@ fn the_metric_command_writes_the_metric_adapt_uses() {
         for (a, b) in t.iter().zip(&want) {
             let b = io::sym3_to_file(b);
             for k in 0..6 {
-                assert!((a[k] - b[k]).abs() <= 1e-15 * b[k].abs().max(1.0), "{a:?} {b:?}");
+                assert!(
+                    (a[k] - b[k]).abs() <= 1e-15 * b[k].abs().max(1.0),
+                    "{a:?} {b:?}"
+                );
             }
         }
     }

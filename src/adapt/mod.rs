@@ -44,21 +44,21 @@ mod tet;
 mod tri;
 
 mod discrete;
-mod files3;
 mod driver;
 pub mod estimate;
 pub mod features;
+mod files3;
 mod options;
 mod report;
 mod run;
 mod shape;
 pub mod sources;
 
-pub use files3::{
-    run3_graded, run3_to_field, shape_metric3, DiscreteLevelSet3, MetricField3, GRADED_ROUNDS,
-};
 pub use driver::{
     adapt, validate_inputs, AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport,
+};
+pub use files3::{
+    run3_graded, run3_to_field, shape_metric3, DiscreteLevelSet3, MetricField3, GRADED_ROUNDS,
 };
 pub use params::MetricInterpolation;
 pub use report::{mesh_report, MeshReport};

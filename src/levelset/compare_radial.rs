@@ -189,7 +189,7 @@ impl Exact<'_> {
             let (a11, a12, a22) = (j1.dot(j1), j1.dot(j2), j2.dot(j2));
             let (b1, b2) = (j1.dot(r), j2.dot(r));
             let det = a11 * a22 - a12 * a12;
-            if !(det.abs() > 1e-300) {
+            if det.abs() <= 1e-300 || det.is_nan() {
                 break;
             }
             let (mut s, mut t) = ((a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det);
@@ -257,10 +257,12 @@ pub fn compare_to_radial(
     let mut to_discrete: Vec<f64> = samples
         .par_iter()
         .map(|&q| {
-            discrete.nearest_neighbor(q.to_array()).map_or(f64::INFINITY, |f| {
-                let [a, b, c] = f.0;
-                (q - closest_point(q, a, b, c).0).length()
-            })
+            discrete
+                .nearest_neighbor(q.to_array())
+                .map_or(f64::INFINITY, |f| {
+                    let [a, b, c] = f.0;
+                    (q - closest_point(q, a, b, c).0).length()
+                })
         })
         .collect();
     let k = GRID_STEPS;

@@ -70,7 +70,10 @@ pub fn gradate_tets(
     if metric.len() != n {
         return Err(Error::InvalidField {
             name: "metric".into(),
-            msg: format!("{} tensors for {n} vertices (need one per vertex)", metric.len()),
+            msg: format!(
+                "{} tensors for {n} vertices (need one per vertex)",
+                metric.len()
+            ),
         });
     }
     for (v, m) in metric.iter().enumerate() {

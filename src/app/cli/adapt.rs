@@ -1,13 +1,13 @@
 //! `anisomesh adapt`: adapt a mesh to a shape, an expression, a level set or a metric file.
 
+use super::adapt3::Sol3;
 use super::metric_args::MetricArgs;
 use super::progress::Spinner;
 use super::shape::chosen_shape;
+use super::user_files::{check_metric, check_sizes, read_input_mesh, read_sol_checked, InputMesh};
 use crate::app::repro::adapt_run::{self, AdaptRunOptions};
 use anisomesh::adapt::{AdaptTarget, LevelSetMetric, RunOptions, DEFAULT_MAX_VERTICES};
 use anisomesh::io::{self, SolField};
-use super::adapt3::Sol3;
-use super::user_files::{check_metric, check_sizes, read_input_mesh, read_sol_checked, InputMesh};
 use anisomesh::metric::Sym2;
 use anisomesh::{DVec2, Error, Result};
 use clap::Args;
@@ -152,7 +152,10 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         if a.input.is_some() {
             return Err(Error::InvalidInput(format!(
                 "--dim 3: {} is a 2D mesh",
-                a.input.as_deref().unwrap_or(std::path::Path::new("")).display()
+                a.input
+                    .as_deref()
+                    .unwrap_or(std::path::Path::new(""))
+                    .display()
             )));
         }
         if a.domain.is_some() || a.target_vertices.is_some() {

@@ -9,11 +9,11 @@ use anisomesh::adapt::{
     run3, run3_graded, run3_to_field, tet_stats, Adapted3, DiscreteLevelSet3, LevelSetMetric,
     Run3Options, Target3,
 };
-use anisomesh::mesh3::Mesh3;
-use anisomesh::metric::Sym3;
 use anisomesh::geom::DVec3;
 use anisomesh::io::{self, atomic_write, Medit3};
 use anisomesh::levelset::{Expr, Shape, Sphere, StarSurface, Torus, Variables};
+use anisomesh::mesh3::Mesh3;
+use anisomesh::metric::Sym3;
 use anisomesh::{Error, Result};
 use std::path::Path;
 
@@ -30,7 +30,10 @@ impl Shape<DVec3> for ExprShape3 {
 }
 
 /// The 3D shape chosen on the command line (default: the 004 star).
-pub(crate) fn shape3(name: Option<&str>, expr: Option<&str>) -> Result<(String, Box<dyn Shape<DVec3>>)> {
+pub(crate) fn shape3(
+    name: Option<&str>,
+    expr: Option<&str>,
+) -> Result<(String, Box<dyn Shape<DVec3>>)> {
     Ok(match (name, expr) {
         (_, Some(e)) => (
             "expr".into(),

@@ -12,8 +12,7 @@
 use anisomesh::geom::DVec3;
 use anisomesh::io;
 use anisomesh::levelset::compare_radial::{
-    compare_to_radial, interface_triangles, zero_level_triangles, RadialComparison,
-    RadialSurface,
+    compare_to_radial, interface_triangles, zero_level_triangles, RadialComparison, RadialSurface,
 };
 use anisomesh::levelset::{Shape, StarSurface};
 use anisomesh::{Error, Result};
@@ -115,7 +114,10 @@ pub fn run(a: &ShapeMeasure<'_>) -> Result<()> {
             }
             None => (
                 m.points.iter().map(|&p| level_set(p)).collect(),
-                format!("the P1 zero level of the {}'s level set at the vertices", a.shape),
+                format!(
+                    "the P1 zero level of the {}'s level set at the vertices",
+                    a.shape
+                ),
             ),
         };
         let (t, v) = zero_level_triangles(&m.points, &m.tets, &u)?;

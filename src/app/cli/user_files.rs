@@ -3,8 +3,8 @@
 //! finite values), each mismatch one typed error that names the file.
 
 use anisomesh::io::{self, AnyFile, SolField};
-use anisomesh::metric::{Sym2, Sym3, SymTensor};
 use anisomesh::mesh3::Mesh3;
+use anisomesh::metric::{Sym2, Sym3, SymTensor};
 use anisomesh::{DVec2, DVec3, Error, Result};
 use std::path::Path;
 
@@ -214,7 +214,7 @@ pub fn mesh3_from_medit(path: &Path, m: io::Medit3) -> Result<Mesh3> {
     for (t, tet) in m.tets.iter().enumerate() {
         let p = tet.map(|v| m.points[v as usize]);
         let vol = anisomesh::mesh3::signed_volume(p[0], p[1], p[2], p[3]);
-        if !(vol > 0.0) {
+        if vol <= 0.0 || vol.is_nan() {
             return Err(Error::InvalidInput(format!(
                 "{}: tetrahedron {} (vertices {} {} {} {}) is {} (signed volume {vol:.3e}); \
                  tetrahedra must be positively oriented",
@@ -245,7 +245,10 @@ pub fn mesh3_from_medit(path: &Path, m: io::Medit3) -> Result<Mesh3> {
         labels.get(&k).copied().unwrap_or(1)
     });
     mesh.check().map_err(|e| {
-        Error::InvalidInput(format!("{}: not a valid tetrahedral mesh: {e}", path.display()))
+        Error::InvalidInput(format!(
+            "{}: not a valid tetrahedral mesh: {e}",
+            path.display()
+        ))
     })?;
     Ok(mesh)
 }
@@ -256,7 +259,11 @@ pub fn check_sizes(path: &Path, h: &[f64]) -> Result<()> {
     if let Some(v) = h.iter().position(|x| !(x.is_finite() && *x > 0.0)) {
         return Err(bad_field(
             path,
-            format!("the size at vertex {} is {} (sizes must be positive and finite)", v + 1, h[v]),
+            format!(
+                "the size at vertex {} is {} (sizes must be positive and finite)",
+                v + 1,
+                h[v]
+            ),
         ));
     }
     Ok(())
