@@ -190,13 +190,57 @@ fn a_level_set_file_is_adapted_to_and_measured_against_the_sphere() {
         assert!(get(&c, dir, "max") < get(&i, dir, "max") + 1e-2, "{c}\n{i}");
     }
     // (The median from the discrete side depends on how the triangles sample the surface.)
-    let d = "exact_to_discrete";
+    let e = "exact_to_discrete";
     assert!(
-        (get(&c, d, "median") - get(&i, d, "median")).abs() < 5e-3,
+        (get(&c, e, "median") - get(&i, e, "median")).abs() < 5e-3,
         "{c}\n{i}"
     );
     let (va, vi) = (c["volume"].as_f64().unwrap(), i["volume"].as_f64().unwrap());
     assert!((va / vi - 1.0).abs() < 0.02, "{va} vs {vi}");
+    // Graded (rounds of the exact metric intersected with the graded field), at a coarser
+    // setting: sizes only shrink, so more vertices, the same zero level.
+    let coarse = |hgrad: Option<&str>, out: &Path| {
+        let mut args = vec![
+            "adapt",
+            "--input",
+            s(&mp),
+            "--sol",
+            s(&sp),
+            "--eps",
+            "2e-2",
+            "--hmin",
+            "0.1",
+            "--hmax",
+            "0.5",
+            "-o",
+            s(out),
+        ];
+        if let Some(g) = hgrad {
+            args.extend_from_slice(&["--hgrad", g]);
+        }
+        anisomesh_ok(&args);
+        read3(&out.join("cube_adapted.mesh")).points.len()
+    };
+    let (g0, g) = (d.join("ungraded"), d.join("graded"));
+    let (na, ng) = (coarse(None, &g0), coarse(Some("1.2"), &g));
+    assert!(ng as f64 > 1.1 * na as f64, "{ng} vs {na}");
+    let cg = stats(&[
+        "measure",
+        s(&g.join("cube_adapted.mesh")),
+        "--shape",
+        "sphere",
+        "--level-set",
+        s(&g.join("cube_adapted.sol")),
+        "--json",
+        "--sampling-level",
+        "5",
+    ]);
+    for dir in ["discrete_to_exact", "exact_to_discrete"] {
+        assert!(
+            get(&cg, dir, "max") < get(&i, dir, "max") + 2e-2,
+            "{cg}\n{i}"
+        );
+    }
 }
 
 /// The sphere of radius 0.5 on a Kuhn mesh: `measure --shape sphere` against the distances
