@@ -22,11 +22,12 @@ pub struct AdaptArgs {
     /// A level-set expression in x and y, negative inside, e.g. "x^2 + y^2 - 0.25".
     #[arg(long, conflicts_with = "input")]
     expr: Option<String>,
-    /// An input mesh (.mesh, .msh); with --sol.
+    /// An input mesh (.mesh in 2D or 3D, .msh); with --sol. A tetrahedral mesh is adapted in 3D.
     #[arg(long, requires = "sol")]
     input: Option<PathBuf>,
-    /// A .sol on the input mesh: a scalar field means "adapt to its zero level"; a symmetric
-    /// tensor field (Medit type 3) means "conform to this metric" (as mmg2d does).
+    /// A .sol on the input mesh: a scalar field means "adapt to its zero level" (sizes with
+    /// --sizes); a symmetric tensor field (Medit type 3; six entries in 3D) means "conform to
+    /// this metric" (as mmg2d / mmg3d do).
     #[arg(long, requires = "input")]
     sol: Option<PathBuf>,
     /// The rectangle to mesh for --shape/--expr, as "x0,y0,x1,y1".
