@@ -97,9 +97,10 @@ pub fn run(a: AdaptArgs) -> Result<()> {
     if let (Some(InputMesh::Tet(mesh)), Some(mesh_path), Some(sol_path)) =
         (&input, &a.input, &a.sol)
     {
-        if a.target_vertices.is_some() || a.fit {
+        if a.target_vertices.is_some() || a.fit || a.domain.is_some() {
             return Err(Error::InvalidInput(
-                "--target-vertices and --fit are 2D options; this mesh is tetrahedral".into(),
+                "--target-vertices, --fit and --domain are 2D options; this mesh is tetrahedral"
+                    .into(),
             ));
         }
         let sol = read_sol_checked(sol_path, mesh.n_points(), 3)?;
