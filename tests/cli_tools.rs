@@ -501,7 +501,7 @@ fn metric_on_tetrahedra_is_a_3d_tensor_field() {
     // Far from the sphere (a corner, distance 0.566) the sizes reach hmax.
     let m0 = io::sym3_from_file(&t[0]);
     assert!((1.0 / m0.xx.sqrt() - 0.2).abs() < 1e-9, "{m0:?}");
-    // The 3D metric cannot be graded or targeted (2D only): one-line error.
+    // The 3D metric cannot be targeted (2D only): one-line error.
     assert_clean_error(
         &anisomesh(&[
             "metric",
@@ -509,8 +509,8 @@ fn metric_on_tetrahedra_is_a_3d_tensor_field() {
             s(&mp),
             "--expr",
             "x - 0.5",
-            "--hgrad",
-            "1.3",
+            "--target-vertices",
+            "1000",
             "-o",
             s(&out_path),
         ]),

@@ -47,6 +47,7 @@ mod discrete;
 mod driver;
 pub mod estimate;
 pub mod features;
+mod files3;
 mod options;
 mod report;
 mod run;
@@ -55,6 +56,9 @@ pub mod sources;
 
 pub use driver::{
     adapt, validate_inputs, AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport,
+};
+pub use files3::{
+    run3_graded, run3_to_field, shape_metric3, DiscreteLevelSet3, MetricField3, GRADED_ROUNDS,
 };
 pub use params::MetricInterpolation;
 pub use report::{mesh_report, MeshReport};

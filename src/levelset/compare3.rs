@@ -129,7 +129,7 @@ pub fn interpolate_p1_tets(
 }
 
 /// A zero-level triangle in the R-tree.
-struct Facet([DVec3; 3]);
+pub(crate) struct Facet(pub(crate) [DVec3; 3]);
 
 impl RTreeObject for Facet {
     type Envelope = AABB<[f64; 3]>;

@@ -5,6 +5,7 @@
 mod arcpoly;
 pub mod compare;
 pub mod compare3;
+pub mod compare_radial;
 pub mod expr;
 pub mod interface;
 pub mod measure;

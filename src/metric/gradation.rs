@@ -30,12 +30,12 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-use super::field::validate_field;
 use super::intersect::intersect;
 #[cfg(test)]
 use super::intersect::max_form_ratio;
-use super::Sym2;
+use super::{Sym2, Sym3, SymTensor};
 use crate::error::{Error, Result};
+use crate::geom::DVec3;
 use crate::mesh::Mesh2;
 
 /// Relative change of a quadratic form below which a metric counts as unchanged.
@@ -48,19 +48,87 @@ pub const GRADATION_TOL: f64 = 1e-6;
 /// Errors: `beta <= 1` or not finite, a metric field whose length is not the vertex count, or a
 /// tensor that is not SPD (the first bad vertex is named).
 pub fn gradate(mesh: &Mesh2, metric: &mut [Sym2], beta: f64) -> Result<usize> {
+    check_beta(beta)?;
+    super::field::validate_field(metric, mesh.n_points())?;
+    let (off, nbr) = mesh.v2v();
+    Ok(gradate_graph(&mesh.points, &off, &nbr, metric, beta))
+}
+
+/// [`gradate`] on a tetrahedral mesh given by its vertices and tetrahedra (the edges are the
+/// tetrahedra's): the same spanning, intersection and work list, over [`Sym3`].
+///
+/// Errors: `beta <= 1` or not finite, a field or cell list that does not fit the vertices, or a
+/// tensor that is not SPD (the first bad vertex is named).
+pub fn gradate_tets(
+    points: &[DVec3],
+    tets: &[[u32; 4]],
+    metric: &mut [Sym3],
+    beta: f64,
+) -> Result<usize> {
+    check_beta(beta)?;
+    let n = points.len();
+    if metric.len() != n {
+        return Err(Error::InvalidField {
+            name: "metric".into(),
+            msg: format!(
+                "{} tensors for {n} vertices (need one per vertex)",
+                metric.len()
+            ),
+        });
+    }
+    for (v, m) in metric.iter().enumerate() {
+        SymTensor::validate(m, v)?;
+    }
+    let mut nb: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for (t, tet) in tets.iter().enumerate() {
+        if let Some(&v) = tet.iter().find(|&&v| v as usize >= n) {
+            return Err(Error::InvalidInput(format!(
+                "tetrahedron {} has vertex {} beyond the {n} vertices",
+                t + 1,
+                v + 1
+            )));
+        }
+        for &a in tet {
+            nb[a as usize].extend(tet.iter().filter(|&&b| b != a));
+        }
+    }
+    let mut off = Vec::with_capacity(n + 1);
+    let mut data = Vec::new();
+    off.push(0);
+    for mut l in nb {
+        l.sort_unstable();
+        l.dedup();
+        data.extend_from_slice(&l);
+        off.push(data.len());
+    }
+    Ok(gradate_graph(points, &off, &data, metric, beta))
+}
+
+fn check_beta(beta: f64) -> Result<()> {
     if !(beta > 1.0 && beta.is_finite()) {
         return Err(Error::InvalidInput(format!(
             "gradation factor beta = {beta} must be finite and > 1"
         )));
     }
-    validate_field(metric, mesh.n_points())?;
-    let n = mesh.n_points();
+    Ok(())
+}
+
+/// The gradation of the module documentation over any dimension: `points`, the neighbours of
+/// `v` in `nbr[off[v]..off[v + 1]]`, a valid SPD field `metric` (one per point) and `beta > 1`.
+/// Returns the number of vertices whose metric changed.
+pub fn gradate_graph<const D: usize, S: SymTensor<D>>(
+    points: &[S::Vec],
+    off: &[usize],
+    nbr: &[u32],
+    metric: &mut [S],
+    beta: f64,
+) -> usize {
+    let n = points.len();
     let ln_beta = beta.ln();
-    let (off, nbr) = mesh.v2v();
     // Max-heap on (sqrt det M, vertex): the smallest elements spread first, so that most
     // vertices are reached by their binding constraint before they are spread themselves. An
     // entry whose key is stale (the metric changed after it was pushed) is skipped.
-    let key = |m: &Sym2| m.det().max(0.0).sqrt();
+    let key = |m: &S| m.det().max(0.0).sqrt();
     let mut queue: BinaryHeap<(Key, usize)> = (0..n)
         .filter(|&v| off[v + 1] > off[v])
         .map(|v| (Key(key(&metric[v])), v))
@@ -78,10 +146,10 @@ pub fn gradate(mesh: &Mesh2, metric: &mut [Sym2], beta: f64) -> Result<usize> {
         }
         budget -= 1;
         let ma = metric[a];
-        let pa = mesh.points[a];
+        let pa = points[a];
         for &b in &nbr[off[a]..off[a + 1]] {
             let b = b as usize;
-            let la = ma.quad(mesh.points[b] - pa).sqrt();
+            let la = ma.quad(points[b] - pa).sqrt();
             let eta = 1.0 + la * ln_beta;
             let spanned = ma.scale(1.0 / (eta * eta));
             let mb = metric[b];
@@ -98,7 +166,7 @@ pub fn gradate(mesh: &Mesh2, metric: &mut [Sym2], beta: f64) -> Result<usize> {
             queue.push((Key(key(&r)), b));
         }
     }
-    Ok(modified.iter().filter(|&&m| m).count())
+    modified.iter().filter(|&&m| m).count()
 }
 
 /// A totally ordered `f64` heap key (`total_cmp`).
@@ -122,11 +190,10 @@ impl Ord for Key {
 /// Whether `s` is *not* below `(1 + GRADATION_TOL) m` in the SPD order, i.e. whether
 /// `max_v (v^T s v) / (v^T m v) > 1 + GRADATION_TOL` ([`max_form_ratio`]), tested without an
 /// eigen-decomposition: `(1 + tol) m - s` is positive semi-definite iff its diagonal and its
-/// determinant are non-negative.
+/// determinant are non-negative (in 3D: its principal minors, [`SymTensor::is_psd`]).
 #[inline]
-fn exceeds(m: &Sym2, s: &Sym2) -> bool {
-    let t = m.scale(1.0 + GRADATION_TOL).sub(s);
-    !(t.xx >= 0.0 && t.yy >= 0.0 && t.det() >= 0.0)
+fn exceeds<const D: usize, S: SymTensor<D>>(m: &S, s: &S) -> bool {
+    !m.scale(1.0 + GRADATION_TOL).sub(s).is_psd()
 }
 
 #[cfg(test)]
@@ -201,5 +268,68 @@ mod tests {
                 "x = {x}: h = {h}, expected {expect}"
             );
         }
+    }
+
+    #[test]
+    fn tetrahedral_gradation_grows_sizes_linearly_from_a_plane() {
+        // Size h0 on the plane x = 0 of a Kuhn box, huge elsewhere: every path from the plane
+        // is at least as long as its x extent, and the x-parallel edges give exactly that, so
+        // the graded isotropic size is h0 + x ln β at every vertex; the bound holds on every
+        // edge of every tetrahedron, along every direction.
+        let mesh = crate::mesh3::Mesh3::kuhn_box(DVec3::ZERO, DVec3::ONE, [8, 5, 4]).unwrap();
+        let h0 = 2e-3;
+        let beta = 1.4f64;
+        let mut m: Vec<Sym3> = mesh
+            .points
+            .iter()
+            .map(|p| Sym3::iso(if p.x == 0.0 { h0 } else { 50.0 }))
+            .collect();
+        let changed = gradate_tets(&mesh.points, &mesh.tets, &mut m, beta).unwrap();
+        assert_eq!(changed, 9 * 6 * 5 - 6 * 5);
+        for (p, mm) in mesh.points.iter().zip(&m) {
+            let expect = h0 + p.x * beta.ln();
+            let (h, _) = SymTensor::sizes(mm);
+            for hi in h {
+                assert!((hi / expect - 1.0).abs() < 1e-5, "{p}: {hi} vs {expect}");
+            }
+        }
+        for t in &mesh.tets {
+            for &a in t {
+                for &b in t {
+                    let (a, b) = (a as usize, b as usize);
+                    let l = m[a].quad(mesh.points[b] - mesh.points[a]).sqrt();
+                    let eta = 1.0 + l * beta.ln();
+                    assert!(max_form_ratio(&m[b], &m[a].scale(1.0 / (eta * eta))) <= 1.0 + 2e-6);
+                }
+            }
+        }
+        // An anisotropic field: the bound on every edge after grading.
+        let mut m: Vec<Sym3> = mesh
+            .points
+            .iter()
+            .map(|p| {
+                let d = DVec3::new(1.0, p.y, 0.3).normalize();
+                let h = 1e-3 + p.distance(DVec3::splat(0.5));
+                Sym3::outer(d).scale(1.0 / (h * h)).add(&Sym3::scalar(1.0))
+            })
+            .collect();
+        gradate_tets(&mesh.points, &mesh.tets, &mut m, 1.3).unwrap();
+        for t in &mesh.tets {
+            for &a in t {
+                for &b in t {
+                    let (a, b) = (a as usize, b as usize);
+                    let l = m[a].quad(mesh.points[b] - mesh.points[a]).sqrt();
+                    let eta = 1.0 + l * 1.3f64.ln();
+                    assert!(max_form_ratio(&m[b], &m[a].scale(1.0 / (eta * eta))) <= 1.0 + 2e-6);
+                }
+            }
+        }
+        let mut bad = m.clone();
+        bad[7] = Sym3::new(1.0, 2.0, 0.0, 1.0, 0.0, 1.0);
+        assert!(matches!(
+            gradate_tets(&mesh.points, &mesh.tets, &mut bad, 1.3),
+            Err(Error::InvalidMetric { vertex: 7, .. })
+        ));
+        assert!(gradate_tets(&mesh.points, &mesh.tets, &mut m[..5], 1.3).is_err());
     }
 }

@@ -40,7 +40,7 @@ pub use complexity::{complexity, predicted_vertices};
 pub use conformity::{conformity, conformity_analytic, Conformity};
 pub use field::validate_field;
 pub use from_hessian::{interpolation_error_metric_iso, lp_metric, multiscale_lp, LpReport};
-pub use gradation::gradate;
+pub use gradation::{gradate, gradate_graph, gradate_tets};
 pub use interpolate::{interpolate_log, lerp_log, lerp_sizes};
 pub use intersect::{intersect, max_form_ratio};
 pub use length::{edge_length, element_metric, q_ani, quality_stats, QualityStats};

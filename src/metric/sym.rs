@@ -62,6 +62,9 @@ pub trait SymTensor<const D: usize>:
     fn is_finite(&self) -> bool;
     /// Whether finite and positive definite.
     fn is_spd(&self) -> bool;
+    /// Whether positive semi-definite by its principal minors (all `>= 0`; no eigen
+    /// decomposition), e.g. to test `B <= A` in the SPD order as `A − B >= 0`.
+    fn is_psd(&self) -> bool;
 
     /// The isotropic metric of size `h`: `I / h²`.
     #[inline]
@@ -229,6 +232,10 @@ impl SymTensor<2> for Sym2 {
         Sym2::is_spd(self)
     }
     #[inline]
+    fn is_psd(&self) -> bool {
+        self.xx >= 0.0 && self.yy >= 0.0 && self.det() >= 0.0
+    }
+    #[inline]
     fn validate(&self, vertex: usize) -> Result<()> {
         Sym2::validate(self, vertex)
     }
@@ -320,6 +327,17 @@ impl SymTensor<3> for Sym3 {
     #[inline]
     fn is_spd(&self) -> bool {
         Sym3::is_spd(self)
+    }
+    #[inline]
+    fn is_psd(&self) -> bool {
+        let (a, b, c) = (self.xx, self.yy, self.zz);
+        a >= 0.0
+            && b >= 0.0
+            && c >= 0.0
+            && a * b - self.xy * self.xy >= 0.0
+            && a * c - self.xz * self.xz >= 0.0
+            && b * c - self.yz * self.yz >= 0.0
+            && self.det() >= 0.0
     }
     #[inline]
     fn validate(&self, vertex: usize) -> Result<()> {

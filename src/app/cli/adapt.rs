@@ -1,11 +1,14 @@
 //! `anisomesh adapt`: adapt a mesh to a shape, an expression, a level set or a metric file.
 
+use super::adapt3::Sol3;
 use super::metric_args::MetricArgs;
 use super::progress::Spinner;
 use super::shape::chosen_shape;
+use super::user_files::{check_metric, check_sizes, read_input_mesh, read_sol_checked, InputMesh};
 use crate::app::repro::adapt_run::{self, AdaptRunOptions};
 use anisomesh::adapt::{AdaptTarget, LevelSetMetric, RunOptions, DEFAULT_MAX_VERTICES};
 use anisomesh::io::{self, SolField};
+use anisomesh::metric::Sym2;
 use anisomesh::{DVec2, Error, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -19,11 +22,12 @@ pub struct AdaptArgs {
     /// A level-set expression in x and y, negative inside, e.g. "x^2 + y^2 - 0.25".
     #[arg(long, conflicts_with = "input")]
     expr: Option<String>,
-    /// An input mesh (.mesh, .msh); with --sol.
+    /// An input mesh (.mesh in 2D or 3D, .msh); with --sol. A tetrahedral mesh is adapted in 3D.
     #[arg(long, requires = "sol")]
     input: Option<PathBuf>,
-    /// A .sol on the input mesh: a scalar field means "adapt to its zero level"; a symmetric
-    /// tensor field (Medit type 3) means "conform to this metric" (as mmg2d does).
+    /// A .sol on the input mesh: a scalar field means "adapt to its zero level" (sizes with
+    /// --sizes); a symmetric tensor field (Medit type 3; six entries in 3D) means "conform to
+    /// this metric" (as mmg2d / mmg3d do).
     #[arg(long, requires = "input")]
     sol: Option<PathBuf>,
     /// The rectangle to mesh for --shape/--expr, as "x0,y0,x1,y1".
@@ -38,10 +42,15 @@ pub struct AdaptArgs {
     /// Isotropic version of the metric (for comparison).
     #[arg(long)]
     iso: bool,
-    /// With --sol holding a metric: grade it during the adaptation with this growth factor
-    /// (> 1; as mmg2d's -hgrad, e.g. 1.3). Default: the metric as given.
-    #[arg(long, requires = "sol")]
+    /// Grade the metric with this growth factor (> 1; as mmg's -hgrad, e.g. 1.3). 2D: a metric
+    /// given with --sol, during the adaptation. 3D: any metric (shape, level set, metric or
+    /// sizes file), over the tetrahedra. Default: the metric as given.
+    #[arg(long)]
     hgrad: Option<f64>,
+    /// With --sol holding a scalar field: read it as element sizes (an isotropic size map, as
+    /// mmg reads a scalar .sol without -ls) instead of a level set.
+    #[arg(long, requires = "sol")]
+    sizes: bool,
     /// Refuse a run whose metric asks for more vertices than this (estimated from its
     /// complexity before adapting).
     #[arg(long, default_value_t = DEFAULT_MAX_VERTICES)]
@@ -76,25 +85,103 @@ pub(crate) fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
 
 /// Runs the job and prints the report.
 pub fn run(a: AdaptArgs) -> Result<()> {
-    if a.dim == 3 {
-        if a.input.is_some() || a.domain.is_some() || a.target_vertices.is_some() {
+    let (metric3, iso) = (a.metric.clone(), a.iso);
+    let metric3 = move |b| LevelSetMetric {
+        isotropic: iso,
+        ..metric3.apply(b)
+    };
+    let input = match &a.input {
+        Some(p) => Some(read_input_mesh(p)?),
+        None => None,
+    };
+    if let (Some(InputMesh::Tet(mesh)), Some(mesh_path), Some(sol_path)) =
+        (&input, &a.input, &a.sol)
+    {
+        if a.target_vertices.is_some() || a.fit || a.domain.is_some() {
             return Err(Error::InvalidInput(
-                "--dim 3 adapts [-1, 1]^3 to --shape or --expr; --input, --domain and \
-                 --target-vertices are 2D options"
+                "--target-vertices, --fit and --domain are 2D options; this mesh is tetrahedral"
                     .into(),
             ));
         }
-        let (metric, iso) = (a.metric.clone(), a.iso);
-        return super::adapt3::run(
-            a.shape.as_deref(),
-            a.expr.as_deref(),
-            |b| LevelSetMetric {
-                isotropic: iso,
-                ..metric.apply(b)
-            },
+        let sol = read_sol_checked(sol_path, mesh.n_points(), 3)?;
+        let sol = match sol.fields.into_iter().next() {
+            Some(SolField::Tensor3(_)) if a.metric.has_band() => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: --band sets the band of the geometric metric; this file holds a metric",
+                    sol_path.display()
+                )));
+            }
+            Some(SolField::Tensor3(m)) => Sol3::Metric(check_metric(
+                sol_path,
+                m.iter().map(io::sym3_from_file).collect(),
+            )?),
+            Some(SolField::Scalar(h)) if a.sizes => {
+                check_sizes(sol_path, &h)?;
+                Sol3::Sizes(h)
+            }
+            Some(SolField::Scalar(u)) => {
+                if let Some(v) = u.iter().position(|x| !x.is_finite()) {
+                    return Err(Error::InvalidField {
+                        name: sol_path.display().to_string(),
+                        msg: format!("non-finite value {} at vertex {}", u[v], v + 1),
+                    });
+                }
+                Sol3::LevelSet(u)
+            }
+            _ => {
+                return Err(Error::InvalidInput(format!(
+                    "{}: expected a scalar level set, sizes (--sizes) or a 3D metric (symmetric \
+                     tensor, six entries) field",
+                    sol_path.display()
+                )))
+            }
+        };
+        let stem = mesh_path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "input".into());
+        return super::adapt3::run_files(
+            mesh,
+            &stem,
+            sol,
+            metric3,
+            a.hgrad,
             a.max_vertices,
             &a.output,
         );
+    }
+    if a.dim == 3 {
+        if a.input.is_some() {
+            return Err(Error::InvalidInput(format!(
+                "--dim 3: {} is a 2D mesh",
+                a.input
+                    .as_deref()
+                    .unwrap_or(std::path::Path::new(""))
+                    .display()
+            )));
+        }
+        if a.domain.is_some() || a.target_vertices.is_some() {
+            return Err(Error::InvalidInput(
+                "--dim 3 adapts [-1, 1]^3 to --shape or --expr; --domain and --target-vertices \
+                 are 2D options"
+                    .into(),
+            ));
+        }
+        return super::adapt3::run(
+            a.shape.as_deref(),
+            a.expr.as_deref(),
+            metric3,
+            a.hgrad,
+            a.max_vertices,
+            &a.output,
+        );
+    }
+    if a.hgrad.is_some() && a.sol.is_none() {
+        return Err(Error::InvalidInput(
+            "--hgrad: in 2D it grades a metric given with --input/--sol (shapes are graded \
+             already)"
+                .into(),
+        ));
     }
     let mut opts = AdaptRunOptions {
         run: RunOptions {
@@ -109,15 +196,17 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         out_dir: a.output.clone(),
         ..AdaptRunOptions::default()
     };
-    let input = if let (Some(mesh_path), Some(sol_path)) = (&a.input, &a.sol) {
-        let mesh = io::read_mesh(mesh_path)?;
-        let sol = io::read_sol_for(sol_path, mesh.n_points())?;
+    let input = if let (Some(InputMesh::Tri(mesh)), Some(mesh_path), Some(sol_path)) =
+        (input, &a.input, &a.sol)
+    {
+        let mesh = *mesh;
+        let sol = read_sol_checked(sol_path, mesh.n_points(), 2)?;
         opts.name = mesh_path
             .file_stem()
             .map(|s| format!("{}_adapted", s.to_string_lossy()))
             .unwrap_or_else(|| "adapted".into());
         match sol.fields.into_iter().next() {
-            Some(SolField::Scalar(_)) if a.hgrad.is_some() => {
+            Some(SolField::Scalar(_)) if a.hgrad.is_some() && !a.sizes => {
                 return Err(Error::InvalidInput(format!(
                     "{}: --hgrad grades a metric; this file holds a scalar level set",
                     sol_path.display()
@@ -128,6 +217,13 @@ pub fn run(a: AdaptArgs) -> Result<()> {
                     "{}: --band sets the band of the geometric metric; this file holds a metric",
                     sol_path.display()
                 )))
+            }
+            Some(SolField::Scalar(h)) if a.sizes => {
+                check_sizes(sol_path, &h)?;
+                AdaptTarget::Metric {
+                    mesh,
+                    metric: h.iter().map(|&h| Sym2::iso(h)).collect(),
+                }
             }
             Some(SolField::Scalar(u)) => AdaptTarget::LevelSet { mesh, u },
             Some(SolField::Tensor2(metric)) => AdaptTarget::Metric { mesh, metric },

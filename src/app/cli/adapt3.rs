@@ -1,12 +1,19 @@
 //! `anisomesh adapt --dim 3`: adapt the Kuhn mesh of `[−1, 1]³` to an implicit surface (the 004
-//! star, a sphere, a torus or an expression in x, y, z) with the geometric metric of 004 eq. (6)
-//! and write the mesh (`.mesh`), a `.vtu` with the level set and the quality, and
-//! `report.json` and a PNG (the zero level shaded, the cut at `y = 0` by mean ratio).
+//! star, a sphere, a torus or an expression in x, y, z) with the geometric metric of 004 eq. (6),
+//! optionally graded (`--hgrad`); and `adapt --input M.mesh --sol S.sol` on a tetrahedral mesh
+//! with a metric, sizes or a level set at its vertices. Both write the mesh (`.mesh`), a `.vtu`
+//! with the level set and the quality, `report.json` and a PNG (the zero level shaded, the cut
+//! at `y = 0` by mean ratio).
 
-use anisomesh::adapt::{run3, tet_stats, LevelSetMetric, Run3Options, Target3};
+use anisomesh::adapt::{
+    run3, run3_graded, run3_to_field, tet_stats, Adapted3, DiscreteLevelSet3, LevelSetMetric,
+    Run3Options, Target3,
+};
 use anisomesh::geom::DVec3;
 use anisomesh::io::{self, atomic_write, Medit3};
 use anisomesh::levelset::{Expr, Shape, Sphere, StarSurface, Torus, Variables};
+use anisomesh::mesh3::Mesh3;
+use anisomesh::metric::Sym3;
 use anisomesh::{Error, Result};
 use std::path::Path;
 
@@ -23,7 +30,10 @@ impl Shape<DVec3> for ExprShape3 {
 }
 
 /// The 3D shape chosen on the command line (default: the 004 star).
-fn shape3(name: Option<&str>, expr: Option<&str>) -> Result<(String, Box<dyn Shape<DVec3>>)> {
+pub(crate) fn shape3(
+    name: Option<&str>,
+    expr: Option<&str>,
+) -> Result<(String, Box<dyn Shape<DVec3>>)> {
     Ok(match (name, expr) {
         (_, Some(e)) => (
             "expr".into(),
@@ -47,15 +57,27 @@ fn shape3(name: Option<&str>, expr: Option<&str>) -> Result<(String, Box<dyn Sha
 }
 
 /// Runs the 3D adaptation and prints its numbers. `metric` is the eq. (6) setting after the
-/// command-line flags; `max_vertices` bounds the run.
+/// command-line flags; `hgrad` grades the metric ([`anisomesh::adapt::run3_graded`]);
+/// `max_vertices` bounds the run.
 pub fn run(
     name: Option<&str>,
     expr: Option<&str>,
     metric: impl Fn(LevelSetMetric) -> LevelSetMetric,
+    hgrad: Option<f64>,
     max_vertices: f64,
     out_dir: &Path,
 ) -> Result<()> {
     let (name, shape) = shape3(name, expr)?;
+    let opts = options(metric, max_vertices);
+    let a = match hgrad {
+        Some(beta) => run3_graded(shape.as_ref(), None, &opts, beta)?,
+        None => run3(Target3::Shape(shape.as_ref()), None, &opts)?,
+    };
+    print_and_write(&a, &format!("{name}3d"), None, out_dir)
+}
+
+/// [`Run3Options`] with the command line's metric setting and vertex limit.
+fn options(metric: impl Fn(LevelSetMetric) -> LevelSetMetric, max_vertices: f64) -> Run3Options {
     let base = Run3Options::default();
     let mut opts = Run3Options {
         metric: metric(base.metric),
@@ -64,7 +86,64 @@ pub fn run(
     opts.adapt = opts
         .adapt
         .max_vertices(Some(max_vertices.min(1e9) as usize));
-    let a = run3(Target3::Shape(shape.as_ref()), None, &opts)?;
+    opts
+}
+
+/// What a 3D `.sol` given with `adapt --input` holds.
+pub enum Sol3 {
+    /// A metric tensor per vertex.
+    Metric(Vec<Sym3>),
+    /// An isotropic size per vertex.
+    Sizes(Vec<f64>),
+    /// A level set per vertex (adapt to its zero level).
+    LevelSet(Vec<f64>),
+}
+
+/// `adapt --input M.mesh --sol S.sol` on a tetrahedral mesh: conform to the metric (or sizes)
+/// given at its vertices, interpolated log-Euclidean in the input mesh at new vertices
+/// ([`run3_to_field`]), or adapt to the zero level of a level set ([`DiscreteLevelSet3`], 004
+/// eq. (6) with the flags' setting). Writes `<stem>_adapted.{mesh,vtu,png}`, the level set on
+/// the adapted mesh as `<stem>_adapted.sol` (level-set input) and `report.json`.
+pub fn run_files(
+    mesh: &Mesh3,
+    stem: &str,
+    sol: Sol3,
+    metric: impl Fn(LevelSetMetric) -> LevelSetMetric,
+    hgrad: Option<f64>,
+    max_vertices: f64,
+    out_dir: &Path,
+) -> Result<()> {
+    let opts = options(metric, max_vertices);
+    let name = format!("{stem}_adapted");
+    match sol {
+        Sol3::Metric(m) => {
+            let a = run3_to_field(mesh, m, &opts, hgrad)?;
+            print_and_write(&a, &name, Some("metric read from file"), out_dir)
+        }
+        Sol3::Sizes(h) => {
+            let m = h.iter().map(|&h| Sym3::iso(h)).collect();
+            let a = run3_to_field(mesh, m, &opts, hgrad)?;
+            print_and_write(&a, &name, Some("sizes read from file"), out_dir)
+        }
+        Sol3::LevelSet(u) => {
+            let shape = DiscreteLevelSet3::new(&mesh.points, &mesh.tets, &u)?;
+            let a = match hgrad {
+                Some(beta) => run3_graded(&shape, Some(mesh), &opts, beta)?,
+                None => run3(Target3::Shape(&shape), Some(mesh), &opts)?,
+            };
+            print_and_write(
+                &a,
+                &name,
+                Some("geometric metric 004 eq. (6) of the distance to the input's zero level"),
+                out_dir,
+            )
+        }
+    }
+}
+
+/// Prints the numbers of `a` and writes `<name>.mesh`, `<name>.vtu`, `<name>.png`, the level set
+/// as `<name>.sol` when there is one and `report.json`.
+fn print_and_write(a: &Adapted3, name: &str, source: Option<&str>, out_dir: &Path) -> Result<()> {
     let r = &a.report;
     std::fs::create_dir_all(out_dir).map_err(|e| Error::Io {
         path: out_dir.to_path_buf(),
@@ -85,7 +164,7 @@ pub fn run(
         tris,
         tri_ref,
     };
-    let mesh_path = out_dir.join(format!("{name}3d.mesh"));
+    let mesh_path = out_dir.join(format!("{name}.mesh"));
     io::write_medit3(&mesh_path, &medit)?;
     let u = a.level_set.clone().unwrap_or_default();
     let q: Vec<f64> = (0..m.n_tets())
@@ -94,8 +173,22 @@ pub fn run(
             anisomesh::adapt::mean_ratio(m.tet_points(t), &mm)
         })
         .collect();
-    let vtu_path = out_dir.join(format!("{name}3d.vtu"));
-    io::write_vtu3(&vtu_path, m, &[("u", &u)], &[("mean_ratio", &q)])?;
+    let vtu_path = out_dir.join(format!("{name}.vtu"));
+    let point_fields: Vec<(&str, &[f64])> = if u.is_empty() {
+        Vec::new()
+    } else {
+        vec![("u", &u)]
+    };
+    io::write_vtu3(&vtu_path, m, &point_fields, &[("mean_ratio", &q)])?;
+    let mut written = vec![mesh_path, vtu_path];
+    if !u.is_empty() && source.is_some() {
+        let sol_path = out_dir.join(format!("{name}.sol"));
+        io::write_sol(&sol_path, &io::Sol::scalar_dim(3, u.clone()))?;
+        written.push(sol_path);
+    }
+    if let Some(s) = source {
+        println!("metric: {s}");
+    }
     let stats = tet_stats(m, &a.metric);
     println!(
         "vertices {}  tetrahedra {}  edges in [1/sqrt2, sqrt2] {:.2}%  mean ratio min {:.3} mean {:.3}",
@@ -108,7 +201,8 @@ pub fn run(
     if let (Some(v), Some(s)) = (r.volume, r.surface_area) {
         print!("volume {v:.10}  surface area {s:.6}");
         if let Some(e) = r.exact_volume {
-            print!("  (exact volume {e:.10}: error {:+.3e})", v - e);
+            let what = if source.is_some() { "input" } else { "exact" };
+            print!("  ({what} volume {e:.10}: error {:+.3e})", v - e);
         }
         println!();
     }
@@ -130,9 +224,10 @@ pub fn run(
     let json = serde_json::to_string_pretty(r).map_err(|e| Error::InvalidInput(e.to_string()))?;
     let report_path = out_dir.join("report.json");
     atomic_write(&report_path, |w| w.write_all(json.as_bytes()))?;
-    let png_path = out_dir.join(format!("{name}3d.png"));
+    let png_path = out_dir.join(format!("{name}.png"));
     picture(&png_path, m, &u, &q)?;
-    for p in [&mesh_path, &vtu_path, &report_path, &png_path] {
+    written.extend([report_path, png_path]);
+    for p in &written {
         println!("wrote {}", p.display());
     }
     Ok(())

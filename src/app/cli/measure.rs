@@ -40,9 +40,23 @@ pub struct MeasureArgs {
     #[arg(long, requires = "against")]
     pub sol: Option<PathBuf>,
     /// The measured mesh's own level set (.sol, scalar); default: the reference's interpolated
-    /// at its vertices.
-    #[arg(long, requires = "against")]
+    /// at its vertices (with --against) or the shape's level set at the vertices (--shape).
+    #[arg(long)]
     pub level_set: Option<PathBuf>,
+    /// Compare the tetrahedral mesh's zero level with an exact surface centred at the origin:
+    /// star (004 §5, r = 0.45 + 0.3 cos 6θ cos² 3φ) or sphere (radius 0.5); distances both
+    /// ways (median, 99th percentile, max) and the volume error.
+    #[arg(long, conflicts_with_all = ["against", "metric", "ugawg"])]
+    pub shape: Option<String>,
+    /// With --shape: the discrete surface is the interface between the tetrahedra labelled IN
+    /// and OUT, as "IN,OUT" (mmg3d -ls output: 3,2, the default when the mesh has both labels
+    /// and no --level-set is given).
+    #[arg(long, requires = "shape")]
+    pub regions: Option<String>,
+    /// With --shape: the exact surface is sampled on the icosahedron refined this many times
+    /// (20 * 4^level triangles).
+    #[arg(long, default_value_t = 7, requires = "shape")]
+    pub sampling_level: u32,
     /// Print the statistics as JSON.
     #[arg(long)]
     pub json: bool,
@@ -214,6 +228,21 @@ fn against(a: &MeasureArgs, mesh: &UserMesh) -> Result<Option<ZeroLevelCompariso
 
 /// Runs `anisomesh measure`.
 pub fn run(a: MeasureArgs) -> Result<()> {
+    if let Some(shape) = &a.shape {
+        return super::measure_shape::run(&super::measure_shape::ShapeMeasure {
+            mesh: &a.mesh,
+            shape,
+            level_set: a.level_set.as_deref(),
+            regions: a.regions.as_deref(),
+            level: a.sampling_level,
+            json: a.json,
+        });
+    }
+    if a.level_set.is_some() && a.against.is_none() {
+        return Err(Error::InvalidInput(
+            "--level-set goes with --against or --shape".into(),
+        ));
+    }
     let mesh = read_user_mesh(&a.mesh)?;
     let (c, name) = measure(&a, &mesh)?;
     let cmp = against(&a, &mesh)?;

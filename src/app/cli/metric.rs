@@ -8,19 +8,21 @@
 //! exact distance to the P1 zero level (004 §2.2), its normal and the shape operator of the
 //! least-squares Hessian (004 §4.3), with `adapt`'s size bounds, band, growth and gradation (same
 //! defaults, same flags); with `--target-vertices`, `adapt`'s multiscale L2 Hessian metric of the
-//! field itself. 3D: the distance's gradient and Hessian by least squares
-//! ([`anisomesh::recovery::recover_ls3`]) in eq. (6) with the same bounds and band.
+//! field itself. 3D: the metric `adapt --input M.mesh --sol U.sol` (`adapt --dim 3 --expr E`)
+//! adapts to, by the same library call ([`shape_metric3`]): eq. (6) of the exact distance to
+//! the P1 zero level with the least-squares shape operator (or of the expression's
+//! derivatives), with the defaults of `adapt --dim 3` and the same flags, graded by `--hgrad`
+//! as `adapt --hgrad` grades it.
 
 use super::measure::print_conformity;
 use super::metric_args::MetricArgs;
 use super::user_files::{read_scalar, read_user_mesh, UserMesh};
-use anisomesh::adapt::{level_set_metric, LevelSetMetric, RunOptions};
+use anisomesh::adapt::{
+    level_set_metric, shape_metric3, DiscreteLevelSet3, LevelSetMetric, Run3Options, RunOptions,
+};
 use anisomesh::io::{self, Sol};
-use anisomesh::levelset::redistance::redistance_geometric_cells;
 use anisomesh::levelset::{Expr, Variables};
-use anisomesh::metric::band::{banded_metric, BandedMetric};
 use anisomesh::metric::{complexity, conformity, gradate, predicted_vertices, Sym2, Sym3};
-use anisomesh::recovery::recover_ls3;
 use anisomesh::{Error, Mesh2, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -43,7 +45,7 @@ pub struct MetricCmdArgs {
     /// The multiscale L2 Hessian metric of the field with this many target vertices (2D).
     #[arg(long, conflicts_with = "band")]
     pub target_vertices: Option<usize>,
-    /// Grade the metric with this growth factor (> 1, as mmg's -hgrad; 2D).
+    /// Grade the metric with this growth factor (> 1, as mmg's -hgrad), as `adapt --hgrad`.
     #[arg(long)]
     pub hgrad: Option<f64>,
     /// Output .sol.
@@ -96,25 +98,27 @@ pub fn metric2(
     level_set_metric(mesh, u, None, &opts)
 }
 
-/// The 3D metric field (module documentation).
+/// The 3D metric field: the metric `adapt --input M.mesh --sol U.sol` (or `adapt --dim 3
+/// --expr E`) adapts to, at the input's vertices, by the same library call
+/// ([`shape_metric3`] of the input's zero level, [`DiscreteLevelSet3`], or of the expression).
 pub fn metric3(
     points: &[anisomesh::DVec3],
     cells: &[[u32; 4]],
     u: &[f64],
+    expr: Option<&str>,
     lm: &LevelSetMetric,
+    hgrad: Option<f64>,
 ) -> Result<Vec<Sym3>> {
-    lm.validate()?;
-    let d = redistance_geometric_cells(points, cells, u)?;
-    let rec = recover_ls3(points, cells, &d)?;
-    let p = BandedMetric {
-        eps: lm.eps,
-        bounds: lm.bounds(),
-        band: lm.band,
-        grade: lm.grade,
-    };
-    Ok((0..d.len())
-        .map(|v| banded_metric(&p, d[v], rec.gradient[v], &rec.hessian[v]))
-        .collect())
+    match expr {
+        Some(e) => {
+            let (_, shape) = super::adapt3::shape3(None, Some(e))?;
+            shape_metric3(shape.as_ref(), lm, points, cells, hgrad)
+        }
+        None => {
+            let shape = DiscreteLevelSet3::new(points, cells, u)?;
+            shape_metric3(&shape, lm, points, cells, hgrad)
+        }
+    }
 }
 
 /// Runs `anisomesh metric`.
@@ -155,12 +159,13 @@ pub fn run(a: MetricCmdArgs) -> Result<()> {
             );
         }
         UserMesh::Tet { points, cells } => {
-            if a.target_vertices.is_some() || a.hgrad.is_some() {
+            if a.target_vertices.is_some() {
                 return Err(Error::Unsupported(
-                    "metric: --target-vertices and --hgrad are 2D only".into(),
+                    "metric: --target-vertices is 2D only".into(),
                 ));
             }
-            let m = metric3(points, cells, &u, &lm)?;
+            let lm3 = a.metric.apply(Run3Options::default().metric);
+            let m = metric3(points, cells, &u, a.expr.as_deref(), &lm3, a.hgrad)?;
             io::write_sol(&a.output, &Sol::metric3(&m))?;
             println!("metric of {}: {}", a.input.display(), mesh_kind(&a));
             print_conformity(

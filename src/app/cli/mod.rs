@@ -15,6 +15,7 @@ mod fit;
 mod flows;
 mod info;
 mod measure;
+mod measure_shape;
 mod metric;
 mod metric_args;
 mod progress;
