@@ -286,6 +286,10 @@ pub fn extend_distance<B: Band<Coord = C3>>(
         }
     }
     // Seeds: the corners of the crossed cells take the nearest triangle of their cells.
+    let bounds: Vec<TriBound> = (0..l.surface.triangles.len())
+        .into_par_iter()
+        .map(|t| TriBound::new(&l, t))
+        .collect();
     let mut best = vec![NONE; coords.len()];
     let mut dist = vec![f64::INFINITY; coords.len()];
     let mut seed = vec![false; coords.len()];
@@ -302,6 +306,9 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             seed[i] = true;
             let p = lat.pos(coords[i]);
             for t in start..tri {
+                if bounds[t].lower(p) >= dist[i] {
+                    continue;
+                }
                 let (d, _, _) = to_triangle(&l, p, t as u32);
                 if d < dist[i] {
                     dist[i] = d;
@@ -314,10 +321,6 @@ pub fn extend_distance<B: Band<Coord = C3>>(
     // nodes with a neighbour that changed in the last pass are visited again, and a candidate
     // triangle is measured only when its lower bound can beat the best so far.
     let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
-    let bounds: Vec<TriBound> = (0..l.surface.triangles.len())
-        .into_par_iter()
-        .map(|t| TriBound::new(&l, t))
-        .collect();
     let layers = (max_dist / lat.h).ceil() as usize + 1;
     let tie = 1e-12 * lat.h;
     let mut side = vec![1.0f64; coords.len()];
@@ -346,8 +349,7 @@ pub fn extend_distance<B: Band<Coord = C3>>(
                         continue;
                     }
                     let t = best[j as usize];
-                    if t == NONE || t == b.3 || bounds[t as usize].lower(p) > limit.min(b.0 + tie)
-                    {
+                    if t == NONE || t == b.3 || bounds[t as usize].lower(p) > limit.min(b.0 + tie) {
                         continue;
                     }
                     if seen[..ns].contains(&t) {
@@ -391,27 +393,30 @@ pub fn extend_distance<B: Band<Coord = C3>>(
     // distances over the crossing corners of the 3³ neighbourhood (the zero level stays put to
     // within the variation of the factor; the gradient is renormalised).
     let scale: Vec<f64> = if keep == Keep::Crossing {
-        (0..coords.len()).into_par_iter().map(|i| {
-            let nb = &nbr[i];
-            if !seed[i] {
-                return 1.0;
-            }
-            let (mut num, mut den) = (0.0, 0.0);
-            for &k in nb.iter() {
-                if k == NONE || !seed[k as usize] {
-                    continue;
+        (0..coords.len())
+            .into_par_iter()
+            .map(|i| {
+                let nb = &nbr[i];
+                if !seed[i] {
+                    return 1.0;
                 }
-                if let Some(x) = old[k as usize] {
-                    num += dist[k as usize].min(max_dist) * x.abs();
-                    den += x * x;
+                let (mut num, mut den) = (0.0, 0.0);
+                for &k in nb.iter() {
+                    if k == NONE || !seed[k as usize] {
+                        continue;
+                    }
+                    if let Some(x) = old[k as usize] {
+                        num += dist[k as usize].min(max_dist) * x.abs();
+                        den += x * x;
+                    }
                 }
-            }
-            if den > 0.0 && num > 0.0 {
-                num / den
-            } else {
-                1.0
-            }
-        }).collect()
+                if den > 0.0 && num > 0.0 {
+                    num / den
+                } else {
+                    1.0
+                }
+            })
+            .collect()
     } else {
         vec![1.0; coords.len()]
     };

@@ -117,11 +117,7 @@ pub(crate) fn element_mass(w: Weight, v: &[f64; 8], h: f64) -> f64 {
 /// The element stiffness of the cell with corner values `v` (2 × 2 × 2 Gauss points), row-major.
 pub(crate) fn element_stiffness(q1: &Q1, w: Weight, v: &[f64; 8], h: f64, ke: &mut [f64; 64]) {
     match w {
-        Weight::Mcf { .. } => q1.stiffness(
-            h,
-            |q| w.mass(q1.gradient(q, h, v)),
-            &mut ke[..],
-        ),
+        Weight::Mcf { .. } => q1.stiffness(h, |q| w.mass(q1.gradient(q, h, v)), &mut ke[..]),
         Weight::Heat => q1.stiffness_tensor(h, |q| w.tensor(q1.gradient(q, h, v)), &mut ke[..]),
     }
 }

@@ -110,7 +110,13 @@ pub fn band_around<B: Band<Coord = C3>>(
         c.dedup();
         DtGrid::from_sorted(c)?
     };
-    let corners = grow_in(lat, &cells, 0, 1, "the zero level reaches the grid boundary")?;
+    let corners = grow_in(
+        lat,
+        &cells,
+        0,
+        1,
+        "the zero level reaches the grid boundary",
+    )?;
     let inner = if j > 1 {
         grow_in(
             lat,

@@ -14,9 +14,9 @@
 use super::band::Band;
 use super::distance::{extend_distance, zero_level_integral, Keep};
 use super::fem::{elements, transparent_vector, Weight};
-use super::stencil::assemble_scaled;
 use super::lattice::{band_around, crossing_cells_of_band, Lattice, NarrowBand, C3};
 use super::scheme::{solve_all, solve_dirichlet, Bc};
+use super::stencil::assemble_scaled;
 use crate::error::{Error, Result};
 use std::time::Instant;
 

@@ -44,11 +44,61 @@ fn corner_mask(a: usize) -> u32 {
     CODE[a].iter().fold(0, |m, &c| m | 1 << c)
 }
 
+/// The isotropic element stiffness at the 2 × 2 × 2 Gauss points, `K = Σ_q a_q G_q` with the
+/// products `G_q[a][b] = w_q h ∇ψ_a(ξ_q) · ∇ψ_b(ξ_q)` tabulated once (000 (2.7)).
+struct Kernel {
+    /// Per Gauss point: the 64 products.
+    g: Vec<[f64; 64]>,
+    /// Per Gauss point: the reference gradients of the 8 shape functions, over `h`.
+    grad: Vec<[[f64; 3]; 8]>,
+}
+
+impl Kernel {
+    fn new(q1: &Q1, h: f64) -> Kernel {
+        let nq = q1.weights.len();
+        let mut g = vec![[0.0; 64]; nq];
+        let mut grad = vec![[[0.0; 3]; 8]; nq];
+        for q in 0..nq {
+            let gr = &q1.grads[q * 8..(q + 1) * 8];
+            for a in 0..8 {
+                for k in 0..3 {
+                    grad[q][a][k] = gr[a][k] / h;
+                }
+                for b in 0..8 {
+                    let dot = gr[a][0] * gr[b][0] + gr[a][1] * gr[b][1] + gr[a][2] * gr[b][2];
+                    g[q][a * 8 + b] = q1.weights[q] * h * dot;
+                }
+            }
+        }
+        Kernel { g, grad }
+    }
+
+    /// The stiffness weighted by `|∇Φ|_ε⁻¹` at the Gauss points for the corner values `v`.
+    fn mcf(&self, eps: f64, v: &[f64; 8], ke: &mut [f64; 64]) {
+        ke.fill(0.0);
+        for (gq, grq) in self.g.iter().zip(&self.grad) {
+            let mut d = [0.0; 3];
+            for (vk, gk) in v.iter().zip(grq) {
+                d[0] += vk * gk[0];
+                d[1] += vk * gk[1];
+                d[2] += vk * gk[2];
+            }
+            let a = 1.0 / (eps * eps + d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            for (k, g) in ke.iter_mut().zip(gq) {
+                *k += a * g;
+            }
+        }
+    }
+}
+
 /// The rows `[lo, hi)` of a partition of `0..n` into about `parts` ranges.
 fn ranges(n: usize, parts: usize) -> Vec<(usize, usize)> {
     let parts = parts.max(1);
     let step = n.div_ceil(parts).max(1);
-    (0..n).step_by(step).map(|lo| (lo, (lo + step).min(n))).collect()
+    (0..n)
+        .step_by(step)
+        .map(|lo| (lo, (lo + step).min(n)))
+        .collect()
 }
 
 /// The elements `[first, last)` that have a corner in the rows `[lo, hi)` (corner 0 is the
@@ -92,6 +142,7 @@ pub fn assemble_scaled(
     }
     let q1 = Q1::new(3, 2)?;
     let h = lat.h;
+    let kernel = Kernel::new(&q1, h);
     let parts = 4 * rayon::current_num_threads();
     let rows = ranges(n, parts);
     let cmask: [u32; 8] = std::array::from_fn(corner_mask);
@@ -136,7 +187,10 @@ pub fn assemble_scaled(
             let mut ke = [0.0; 64];
             for e in &elems[f..l] {
                 let v: [f64; 8] = std::array::from_fn(|k| phi[e.1[k] as usize]);
-                element_stiffness(&q1, w, &v, h, &mut ke);
+                match w {
+                    Weight::Mcf { eps } => kernel.mcf(eps, &v, &mut ke),
+                    Weight::Heat => element_stiffness(&q1, w, &v, h, &mut ke),
+                }
                 let mw = element_mass(w, &v, h);
                 for (a, &ia) in e.1.iter().enumerate() {
                     let ia = ia as usize;

@@ -277,7 +277,15 @@ pub fn step_timing(n: usize, j: usize) -> Result<StepTiming> {
     let tau = lat.h * lat.h;
     let (nnz, matvec_rate, matvec_bandwidth) = {
         let el = elements(&s.nb);
-        let (_, a) = assemble_scaled(&lat, &el, nodes, &s.phi, Weight::Mcf { eps: 1e-3 }, tau, true)?;
+        let (_, a) = assemble_scaled(
+            &lat,
+            &el,
+            nodes,
+            &s.phi,
+            Weight::Mcf { eps: 1e-3 },
+            tau,
+            true,
+        )?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
