@@ -231,3 +231,62 @@ pub fn assemble_scaled(
         },
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backends::dtgrid::fem::elements;
+    use crate::backends::dtgrid::lattice::{band_around, crossing_cells_of_fn, NarrowBand, C3};
+    use crate::backends::dtgrid::{Band, DtGrid};
+    use crate::geom::DVec3;
+
+    #[test]
+    fn masks_give_the_element_by_element_matrix() {
+        let lat = Lattice::unit(17).unwrap();
+        let f = |p: DVec3| (p - DVec3::new(0.03, -0.02, 0.01)).length() - 0.29;
+        let cross = crossing_cells_of_fn(&lat, &f).unwrap();
+        let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, 2).unwrap();
+        let n = nb.band.len();
+        let phi: Vec<f64> = nb
+            .band
+            .coords()
+            .map(|c| f(lat.pos(c)) * (1.0 + 0.3 * lat.pos(c).x))
+            .collect();
+        let el = elements(&nb);
+        let q1 = Q1::new(3, 2).unwrap();
+        for w in [Weight::Mcf { eps: 1e-3 }, Weight::Heat] {
+            let tau = 0.37;
+            let (mass, a) = assemble_scaled(&lat, &el, n, &phi, w, tau, true).unwrap();
+            // Reference: the pattern by sorting, entries added by search.
+            let mut r = Csr::from_element_iter(n, el.iter().map(|(_, idx)| &idx[..])).unwrap();
+            let mut m = vec![0.0; n];
+            let mut ke = [0.0; 64];
+            for (_, idx) in &el {
+                let v: [f64; 8] = std::array::from_fn(|k| phi[idx[k] as usize]);
+                element_stiffness(&q1, w, &v, lat.h, &mut ke);
+                for (a, &ia) in idx.iter().enumerate() {
+                    m[ia as usize] += element_mass(w, &v, lat.h);
+                    for (b, &ib) in idx.iter().enumerate() {
+                        r.add(ia as usize, ib as usize, tau * ke[a * 8 + b])
+                            .unwrap();
+                    }
+                }
+            }
+            for (i, mi) in m.iter().enumerate() {
+                r.add(i, i, *mi).unwrap();
+            }
+            assert_eq!((&a.row_ptr, &a.col), (&r.row_ptr, &r.col));
+            let scale = r.val.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            for (x, y) in a.val.iter().zip(&r.val) {
+                assert!((x - y).abs() <= 1e-12 * scale, "{x} {y}");
+            }
+            for (x, y) in mass.iter().zip(&m) {
+                assert!((x - y).abs() <= 1e-14 * y.abs().max(1e-300), "{x} {y}");
+            }
+        }
+        // Elements out of order are refused.
+        let mut bad = el.clone();
+        bad.swap(0, 1);
+        assert!(assemble_scaled(&lat, &bad, n, &phi, Weight::Heat, 1.0, false).is_err());
+    }
+}
