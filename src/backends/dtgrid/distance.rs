@@ -305,8 +305,8 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             };
             seed[i] = true;
             let p = lat.pos(coords[i]);
-            for t in start..tri {
-                if bounds[t].lower(p) >= dist[i] {
+            for (t, bound) in bounds.iter().enumerate().take(tri).skip(start) {
+                if bound.lower(p) >= dist[i] {
                     continue;
                 }
                 let (d, _, _) = to_triangle(&l, p, t as u32);
