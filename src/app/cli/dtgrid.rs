@@ -159,14 +159,34 @@ pub fn run(cmd: DtGrid) -> Result<()> {
         DtGrid::Mcf(a) => {
             if a.step_timing {
                 let n = a.n.unwrap_or(129);
-                let (nodes, rb, asm, sol, solves, rate) = repro::step_timing(n, a.band)?;
+                let r = repro::step_timing(n, a.band)?;
+                let t = r.step.times;
                 println!(
-                    "one mean curvature step, sphere r = 1/3, {n}³, j = {}: {nodes} band nodes, \
-                     {solves} solves; rebuild {rb:.3} s, assembly {asm:.3} s, solve {sol:.3} s, \
-                     total {:.3} s (000 Table 4.1 at 513³: 10.2, 14.1, 5.9 s); CSR matvec \
-                     {rate:.3e} band nodes/s",
-                    a.band,
-                    rb + asm + sol
+                    "one mean curvature step, sphere r = 1/3, {n}³, j = {}, tau = h²: {} band \
+                     nodes, {} solves, {} CG iterations",
+                    a.band, r.nodes, r.step.solves, r.step.cg_iterations
+                );
+                println!("phase        wall s    cpu s   (000 Table 4.1 at 513³, j = 1)");
+                for (name, w, c, p) in [
+                    ("rebuild", t.rebuild, t.rebuild_cpu, 10.202),
+                    ("assembly", t.assembly, t.assembly_cpu, 14.133),
+                    ("solve", t.solve, t.solve_cpu, 5.864),
+                ] {
+                    println!("{name:10} {w:8.3} {c:8.3}   {p:6.3}");
+                }
+                println!(
+                    "{:10} {:8.3} {:8.3}   {:6.3}",
+                    "total",
+                    t.rebuild + t.assembly + t.solve,
+                    t.rebuild_cpu + t.assembly_cpu + t.solve_cpu,
+                    30.199
+                );
+                println!(
+                    "CSR product (M + tau L) x on one core: {} entries, {:.3e} band nodes/s, \
+                     {:.2} GB/s moved (row pointers, columns, values, x, y)",
+                    r.nnz,
+                    r.matvec_rate,
+                    r.matvec_bandwidth * 1e-9
                 );
                 return Ok(());
             }
@@ -179,13 +199,9 @@ pub fn run(cmd: DtGrid) -> Result<()> {
                         inner: a.inner,
                         ..McfOptions::default()
                     };
-                    vec![repro::mcf_row(
-                        n,
-                        a.tau.unwrap_or(h * h),
-                        a.t_end,
-                        &o,
-                        None,
-                    )?]
+                    let tau = a.tau.unwrap_or(h * h);
+                    let block = repro::paper_block(h, tau, a.t_end, &o);
+                    vec![repro::mcf_row(n, tau, a.t_end, &o, block)?]
                 }
                 None => repro::mcf_table(if a.quick {
                     &[17, 33, 65]

@@ -164,6 +164,46 @@ fn to_triangle(l: &Level, p: DVec3, t: u32) -> (f64, f64, f64) {
     (d0, cos, if s < 0.0 { -1.0 } else { 1.0 })
 }
 
+/// Cheap lower bounds of the distance to a triangle: its circumscribing ball about the
+/// centroid and its plane.
+#[derive(Clone, Copy)]
+struct TriBound {
+    centre: DVec3,
+    radius: f64,
+    normal: DVec3,
+    offset: f64,
+}
+
+impl TriBound {
+    fn new(l: &Level, t: usize) -> TriBound {
+        let pts = &l.surface.points;
+        let [a, b, c] = l.surface.triangles[t].map(|k| pts[k as usize]);
+        let centre = (a + b + c) / 3.0;
+        let radius = [a, b, c]
+            .iter()
+            .map(|v| (*v - centre).length())
+            .fold(0.0, f64::max);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        let normal = if len > 0.0 { n / len } else { DVec3::ZERO };
+        // Rounding slack, so the bound never exceeds the distance computed from the vertices.
+        TriBound {
+            centre,
+            radius: radius * (1.0 + 1e-9),
+            normal,
+            offset: normal.dot(a),
+        }
+    }
+
+    /// A lower bound of the distance of `p` to the triangle.
+    #[inline]
+    fn lower(&self, p: DVec3) -> f64 {
+        let ball = (p - self.centre).length() - self.radius;
+        let plane = (self.normal.dot(p) - self.offset).abs() * (1.0 - 1e-9);
+        ball.max(plane)
+    }
+}
+
 /// The distance of `p` to the trilinear zero level near triangle `t`: the closest point on the
 /// triangle projected onto it.
 fn to_level(lat: &Lattice, l: &Level, p: DVec3, t: u32) -> f64 {
@@ -246,6 +286,10 @@ pub fn extend_distance<B: Band<Coord = C3>>(
         }
     }
     // Seeds: the corners of the crossed cells take the nearest triangle of their cells.
+    let bounds: Vec<TriBound> = (0..l.surface.triangles.len())
+        .into_par_iter()
+        .map(|t| TriBound::new(&l, t))
+        .collect();
     let mut best = vec![NONE; coords.len()];
     let mut dist = vec![f64::INFINITY; coords.len()];
     let mut seed = vec![false; coords.len()];
@@ -261,7 +305,10 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             };
             seed[i] = true;
             let p = lat.pos(coords[i]);
-            for t in start..tri {
+            for (t, bound) in bounds.iter().enumerate().take(tri).skip(start) {
+                if bound.lower(p) >= dist[i] {
+                    continue;
+                }
                 let (d, _, _) = to_triangle(&l, p, t as u32);
                 if d < dist[i] {
                     dist[i] = d;
@@ -270,38 +317,62 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             }
         }
     }
-    // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes).
+    // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes). Only
+    // nodes with a neighbour that changed in the last pass are visited again, and a candidate
+    // triangle is measured only when its lower bound can beat the best so far.
+    let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
     let layers = (max_dist / lat.h).ceil() as usize + 1;
+    let tie = 1e-12 * lat.h;
     let mut side = vec![1.0f64; coords.len()];
+    let mut moved = vec![true; coords.len()];
     for pass in 0..layers {
-        let res = neighbourhoods(&coords, |i, nb| {
-            let p = lat.pos(coords[i]);
-            let mut cand = [NONE; 28];
-            let mut nc = 0;
-            for &j in nb.iter().chain(std::iter::once(&(i as u32))) {
-                if j == NONE {
-                    continue;
+        let res: Vec<Option<(f64, f64, f64, u32)>> = (0..coords.len())
+            .into_par_iter()
+            .map(|i| {
+                let nb = &nbr[i];
+                if !moved[i] && nb.iter().all(|&j| j == NONE || !moved[j as usize]) {
+                    return None;
                 }
-                let t = best[j as usize];
-                if t != NONE && !cand[..nc].contains(&t) {
-                    cand[nc] = t;
-                    nc += 1;
+                let p = lat.pos(coords[i]);
+                // The node's own triangle bounds the search from the start.
+                let own = best[i];
+                let limit = if own == NONE {
+                    f64::INFINITY
+                } else {
+                    to_triangle(&l, p, own).0 + tie
+                };
+                let mut seen = [NONE; 28];
+                let mut ns = 0;
+                let mut b = (f64::INFINITY, 0.0f64, 1.0f64, NONE);
+                for &j in nb.iter().chain(std::iter::once(&(i as u32))) {
+                    if j == NONE {
+                        continue;
+                    }
+                    let t = best[j as usize];
+                    if t == NONE || t == b.3 || bounds[t as usize].lower(p) > limit.min(b.0 + tie) {
+                        continue;
+                    }
+                    if seen[..ns].contains(&t) {
+                        continue;
+                    }
+                    seen[ns] = t;
+                    ns += 1;
+                    let (d, cos, s) = to_triangle(&l, p, t);
+                    let tied = (d - b.0).abs() <= tie;
+                    if d < b.0 - tie || (tied && (cos > b.1 || (cos == b.1 && t < b.3))) {
+                        b = (d, cos, s, t);
+                    }
                 }
-            }
-            let mut b = (f64::INFINITY, 0.0f64, 1.0f64, NONE);
-            for &t in &cand[..nc] {
-                let (d, cos, s) = to_triangle(&l, p, t);
-                let tie = (d - b.0).abs() <= 1e-12 * lat.h;
-                if d < b.0 - 1e-12 * lat.h || (tie && (cos > b.1 || (cos == b.1 && t < b.3))) {
-                    b = (d, cos, s, t);
-                }
-            }
-            b
-        });
+                Some(b)
+            })
+            .collect();
         let mut changed = false;
-        for (i, (d, _, s, t)) in res.into_iter().enumerate() {
+        for (i, r) in res.into_iter().enumerate() {
+            moved[i] = false;
+            let Some((d, _, s, t)) = r else { continue };
             if t != best[i] {
                 changed = true;
+                moved[i] = true;
             }
             best[i] = t;
             dist[i] = d;
@@ -322,26 +393,30 @@ pub fn extend_distance<B: Band<Coord = C3>>(
     // distances over the crossing corners of the 3³ neighbourhood (the zero level stays put to
     // within the variation of the factor; the gradient is renormalised).
     let scale: Vec<f64> = if keep == Keep::Crossing {
-        neighbourhoods(&coords, |i, nb| {
-            if !seed[i] {
-                return 1.0;
-            }
-            let (mut num, mut den) = (0.0, 0.0);
-            for &k in nb.iter() {
-                if k == NONE || !seed[k as usize] {
-                    continue;
+        (0..coords.len())
+            .into_par_iter()
+            .map(|i| {
+                let nb = &nbr[i];
+                if !seed[i] {
+                    return 1.0;
                 }
-                if let Some(x) = old[k as usize] {
-                    num += dist[k as usize].min(max_dist) * x.abs();
-                    den += x * x;
+                let (mut num, mut den) = (0.0, 0.0);
+                for &k in nb.iter() {
+                    if k == NONE || !seed[k as usize] {
+                        continue;
+                    }
+                    if let Some(x) = old[k as usize] {
+                        num += dist[k as usize].min(max_dist) * x.abs();
+                        den += x * x;
+                    }
                 }
-            }
-            if den > 0.0 && num > 0.0 {
-                num / den
-            } else {
-                1.0
-            }
-        })
+                if den > 0.0 && num > 0.0 {
+                    num / den
+                } else {
+                    1.0
+                }
+            })
+            .collect()
     } else {
         vec![1.0; coords.len()]
     };

@@ -104,29 +104,22 @@ pub fn assemble(
     phi: &[f64],
     w: Weight,
 ) -> Result<BandMatrices> {
-    let q1 = Q1::new(3, 2)?;
-    let h = lat.h;
-    let local: Vec<(f64, [f64; 64])> = elems
-        .par_iter()
-        .map(|(_, idx)| {
-            let v: [f64; 8] = std::array::from_fn(|k| phi[idx[k] as usize]);
-            let mut ke = [0.0; 64];
-            q1.stiffness_tensor(h, |q| w.tensor(q1.gradient(q, h, &v)), &mut ke);
-            let mw = w.mass(grad_at(&v, &[0.5; 3], h)) * q1.lumped_mass(h);
-            (mw, ke)
-        })
-        .collect();
-    let mut stiff = Csr::from_element_iter(n, elems.iter().map(|(_, idx)| &idx[..]))?;
-    let mut mass = vec![0.0; n];
-    for ((_, idx), (mw, ke)) in elems.iter().zip(&local) {
-        for (a, &ia) in idx.iter().enumerate() {
-            mass[ia as usize] += mw;
-            for (b, &ib) in idx.iter().enumerate() {
-                stiff.add(ia as usize, ib as usize, ke[a * 8 + b])?;
-            }
-        }
-    }
+    let (mass, stiff) = super::stencil::assemble_scaled(lat, elems, n, phi, w, 1.0, false)?;
     Ok(BandMatrices { mass, stiff })
+}
+
+/// The weighted lumped mass of the cell with corner values `v` (000 (2.6): the weight at the
+/// cell's centre).
+pub(crate) fn element_mass(w: Weight, v: &[f64; 8], h: f64) -> f64 {
+    w.mass(grad_at(v, &[0.5; 3], h)) * h * h * h / 8.0
+}
+
+/// The element stiffness of the cell with corner values `v` (2 × 2 × 2 Gauss points), row-major.
+pub(crate) fn element_stiffness(q1: &Q1, w: Weight, v: &[f64; 8], h: f64, ke: &mut [f64; 64]) {
+    match w {
+        Weight::Mcf { .. } => q1.stiffness(h, |q| w.mass(q1.gradient(q, h, v)), &mut ke[..]),
+        Weight::Heat => q1.stiffness_tensor(h, |q| w.tensor(q1.gradient(q, h, v)), &mut ke[..]),
+    }
 }
 
 /// The transparent boundary vector `Γ_j = ∫_{∂Ω_n} A[Φ] ∇U · ν Θ_j da` of 000 (2.9) (heat) and

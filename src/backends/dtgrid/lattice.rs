@@ -5,6 +5,7 @@
 //! nodes, the others the boundary nodes (the Dirichlet nodes of 000 §2.4).
 
 use super::band::Band;
+use super::grid::DtGrid;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use rayon::prelude::*;
@@ -65,27 +66,14 @@ pub struct NarrowBand<B> {
     pub j: usize,
 }
 
-/// Sorted, deduplicated `3³` neighbourhood of `nodes`.
-/// Error: [`Error::InvalidInput`] when it leaves the grid (the band does not fit).
-fn dilate(lat: &Lattice, nodes: &[C3]) -> Result<Vec<C3>> {
-    let mut out: Vec<C3> = nodes
-        .par_iter()
-        .flat_map_iter(|&c| {
-            (0..27i32).map(move |k| {
-                [
-                    c[0] + (k % 3) - 1,
-                    c[1] + ((k / 3) % 3) - 1,
-                    c[2] + (k / 9) - 1,
-                ]
-            })
-        })
-        .collect();
-    out.par_sort_unstable();
-    out.dedup();
-    if let Some(c) = out.iter().find(|c| !lat.contains(**c)) {
+/// `g` grown by `minus..=plus` along every axis, checked to stay in the grid (`what` names the
+/// failure).
+fn grow_in(lat: &Lattice, g: &DtGrid<C3>, minus: i32, plus: i32, what: &str) -> Result<DtGrid<C3>> {
+    let (out, lo, hi) = g.grow(minus, plus)?;
+    if lo.iter().any(|&v| v < 0) || hi.iter().any(|&v| v as usize >= lat.n) {
+        let c = if lo.iter().any(|&v| v < 0) { lo } else { hi };
         return Err(Error::InvalidInput(format!(
-            "the narrow band leaves the grid at node {c:?} (the shape does not fit in the grid with \
-             this band width)"
+            "{what} at coordinates {c:?} (the shape does not fit in the grid with this band width)"
         )));
     }
     Ok(out)
@@ -93,6 +81,10 @@ fn dilate(lat: &Lattice, nodes: &[C3]) -> Result<Vec<C3>> {
 
 /// The band of half-width `j ≥ 1` around the cells `crossing` (lowest corners of the cells the
 /// zero level passes through, any order).
+///
+/// Computed on runs (000 §3): the corners of the crossed cells (`I¹`), grown `j − 1` times by
+/// the `3³` neighbourhood (`I^j`, the interior nodes), and once more (the band `I^{j+1}`); the
+/// cost is proportional to the runs of the band.
 /// Errors: [`Error::EmptyLevelSet`] when `crossing` is empty, [`Error::InvalidInput`] when the
 /// band leaves the grid or `j = 0`.
 pub fn band_around<B: Band<Coord = C3>>(
@@ -110,32 +102,41 @@ pub fn band_around<B: Band<Coord = C3>>(
             "no grid cell is crossed by the zero level".into(),
         ));
     }
-    let mut inner: Vec<C3> = crossing
-        .iter()
-        .flat_map(|&c| (0..8).map(move |k| super::band::GridCoord::corner(c, k)))
-        .collect();
-    inner.par_sort_unstable();
-    inner.dedup();
-    if let Some(c) = inner.iter().find(|c| !lat.contains(**c)) {
-        return Err(Error::InvalidInput(format!(
-            "the zero level reaches the grid boundary at node {c:?} (the shape does not fit in \
-             the grid)"
-        )));
-    }
-    for _ in 1..j {
-        inner = dilate(lat, &inner)?;
-    }
-    let all = dilate(lat, &inner)?;
-    let mut interior = vec![false; all.len()];
-    let mut k = 0;
-    for (i, c) in all.iter().enumerate() {
-        while k < inner.len() && inner[k] < *c {
-            k += 1;
-        }
-        interior[i] = k < inner.len() && inner[k] == *c;
+    let cells: DtGrid<C3> = if crossing.windows(2).all(|p| p[0] < p[1]) {
+        DtGrid::from_sorted(crossing.iter().copied())?
+    } else {
+        let mut c = crossing.to_vec();
+        c.par_sort_unstable();
+        c.dedup();
+        DtGrid::from_sorted(c)?
+    };
+    let corners = grow_in(
+        lat,
+        &cells,
+        0,
+        1,
+        "the zero level reaches the grid boundary",
+    )?;
+    let inner = if j > 1 {
+        grow_in(
+            lat,
+            &corners,
+            j as i32 - 1,
+            j as i32 - 1,
+            "the narrow band leaves the grid",
+        )?
+    } else {
+        corners
+    };
+    let all = grow_in(lat, &inner, 1, 1, "the narrow band leaves the grid")?;
+    let mut interior = Vec::with_capacity(all.len());
+    let mut it = inner.coords().peekable();
+    for c in all.coords() {
+        while it.next_if(|x| *x < c).is_some() {}
+        interior.push(it.next_if(|x| *x == c).is_some());
     }
     Ok(NarrowBand {
-        band: B::from_sorted(all)?,
+        band: B::from_sorted(all.coords())?,
         interior,
         j,
     })
@@ -198,10 +199,7 @@ pub fn crossing_cells_of_fn(lat: &Lattice, f: &(impl Fn(DVec3) -> f64 + Sync)) -
 /// band field `phi`.
 pub fn crossing_cells_of_band<B: Band<Coord = C3>>(band: &B, phi: &[f64]) -> Vec<C3> {
     band.cells()
-        .filter(|(_, idx)| {
-            let v: Vec<f64> = idx.iter().map(|&i| phi[i as usize]).collect();
-            crosses(&v)
-        })
+        .filter(|(_, idx)| crosses(&idx.map(|i| phi[i as usize])))
         .map(|(c, _)| c)
         .collect()
 }

@@ -10,7 +10,8 @@
 //! and the nested inner iteration, 000 §2.4, Table 2.2), [`surface`] (the zero level, surface
 //! integrals, signed distance), [`backend`] (the band behind the back-end contract),
 //! [`probe`] (point values and curvature of a band field), [`shape_heat`] (the heat equation on
-//! the zero level of any implicit function).
+//! the zero level of any implicit function), [`stencil`] (band assembly by neighbour-offset
+//! masks).
 
 pub mod backend;
 mod band;
@@ -24,6 +25,7 @@ pub mod probe;
 pub mod scheme;
 pub mod shape_heat;
 mod sorted;
+pub mod stencil;
 pub mod surface;
 
 pub use backend::{DtGridBackend, DtGridOptions};

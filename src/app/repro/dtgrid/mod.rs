@@ -87,6 +87,22 @@ fn paper_mcf(block: usize, j: usize, n: usize) -> Option<f64> {
     Some(T[block][row][col])
 }
 
+/// The block of 000 Table 2.2 whose scheme a single run uses (`None` when it is none of them):
+/// Dirichlet conditions to `t = 0.0059` from `R0 = 0.25`, with inner iterations at `τ = h²`
+/// (block 0) or `τ = h/8` (block 1), or without them at `τ = h/8` (block 2).
+pub fn paper_block(h: f64, tau: f64, t_end: f64, o: &McfOptions) -> Option<usize> {
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b;
+    if o.bc != Bc::Dirichlet || !near(t_end, 0.0059) {
+        return None;
+    }
+    match (o.inner > 1, near(tau, h * h), near(tau, h / 8.0)) {
+        (true, true, _) => Some(0),
+        (true, false, true) => Some(1),
+        (false, _, true) => Some(2),
+        _ => None,
+    }
+}
+
 /// One heat run as a row.
 pub fn heat_row(o: &HeatOptions) -> Result<Row> {
     let t = Instant::now();
@@ -234,35 +250,70 @@ pub fn write_rows(dir: &Path, name: &str, rows: &[Row]) -> Result<()> {
     })
 }
 
-/// The phases of one mean curvature step of the sphere `r = 1/3` on `n³` nodes with half-width
-/// `j`, `τ = h²` (000 Table 4.1): (band nodes, rebuild, assembly, solve seconds, solves, band
-/// nodes per second of the assembled CSR matrix–vector product).
-pub fn step_timing(n: usize, j: usize) -> Result<(usize, f64, f64, f64, usize, f64)> {
-    use anisomesh::backends::dtgrid::fem::{assemble, elements, Weight};
+/// The phases of one mean curvature step (000 Table 4.1) and the speed of the band
+/// matrix–vector product.
+#[derive(Debug, Clone, Copy)]
+pub struct StepTiming {
+    /// Band nodes.
+    pub nodes: usize,
+    /// The step's report (solves, CG iterations, wall and processor seconds per phase).
+    pub step: anisomesh::backends::dtgrid::mcf::StepReport,
+    /// Stored entries of the system matrix `M + τ L`.
+    pub nnz: usize,
+    /// Band nodes per second of the CSR product `(M + τ L) x` on one core.
+    pub matvec_rate: f64,
+    /// Bytes per second it moves at least (row pointers, columns, values, `x` and `y` once).
+    pub matvec_bandwidth: f64,
+}
+
+/// One mean curvature step of the sphere `r = 1/3` on `n³` nodes with half-width `j`, `τ = h²`
+/// (000 Table 4.1), and the system matrix's product timed on one core (a one-thread pool).
+pub fn step_timing(n: usize, j: usize) -> Result<StepTiming> {
+    use anisomesh::backends::dtgrid::fem::{elements, Weight};
+    use anisomesh::backends::dtgrid::stencil::assemble_scaled;
     let lat = Lattice::unit(n)?;
     let mut s: McfState<B> = McfState::new(lat, j, &|p| p.length() - 1.0 / 3.0)?;
     let nodes = s.nb.band.len();
-    let el = elements(&s.nb);
-    let m = assemble(&lat, &el, nodes, &s.phi, Weight::Mcf { eps: 1e-3 })?;
-    let x = s.phi.clone();
-    let mut y = vec![0.0; nodes];
-    let reps = 20;
-    let t = Instant::now();
-    for _ in 0..reps {
-        m.stiff.matvec(&x, &mut y);
-    }
-    let rate = (reps * nodes) as f64 / t.elapsed().as_secs_f64();
+    let tau = lat.h * lat.h;
+    let (nnz, matvec_rate, matvec_bandwidth) = {
+        let el = elements(&s.nb);
+        let (_, a) = assemble_scaled(
+            &lat,
+            &el,
+            nodes,
+            &s.phi,
+            Weight::Mcf { eps: 1e-3 },
+            tau,
+            true,
+        )?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .map_err(|e| anisomesh::Error::InvalidInput(format!("thread pool: {e}")))?;
+        let x = s.phi.clone();
+        let mut y = vec![0.0; nodes];
+        let secs = pool.install(|| {
+            a.matvec(&x, &mut y);
+            let reps = (2e8 / a.nnz().max(1) as f64).ceil().clamp(3.0, 200.0) as usize;
+            let t = Instant::now();
+            for _ in 0..reps {
+                a.matvec(&x, &mut y);
+            }
+            t.elapsed().as_secs_f64() / reps as f64
+        });
+        let bytes = 8 * (nodes + 1) + 12 * a.nnz() + 16 * nodes;
+        (a.nnz(), nodes as f64 / secs, bytes as f64 / secs)
+    };
     let o = McfOptions {
         j,
         ..McfOptions::default()
     };
-    let rep = s.step(lat.h * lat.h, &o)?;
-    Ok((
+    let step = s.step(tau, &o)?;
+    Ok(StepTiming {
         nodes,
-        rep.times.rebuild,
-        rep.times.assembly,
-        rep.times.solve,
-        rep.solves,
-        rate,
-    ))
+        step,
+        nnz,
+        matvec_rate,
+        matvec_bandwidth,
+    })
 }

@@ -78,6 +78,53 @@ impl<C: DtCoord> DtGrid<C> {
         from_runs(&runs)
     }
 
+    /// The nodes `x + δ` with `x` in `self` and `−minus ≤ δ_a ≤ plus` along every axis (not
+    /// clipped to any grid): `grow(0, 1)` turns cells (lowest corners) into their corner nodes,
+    /// `grow(1, 1)` is the `3^d` neighbourhood. Computed on runs as [`DtGrid::dilate`]; the
+    /// lowest and highest coordinate along each axis come with it (for the caller's bounds
+    /// check).
+    /// Error: [`Error::InvalidInput`] for a negative `minus` or `plus`, or coordinates beyond
+    /// `±2^30`.
+    pub fn grow(&self, minus: i32, plus: i32) -> Result<(Self, [i32; 3], [i32; 3])> {
+        let d = C::DIM;
+        if minus < 0 || plus < 0 {
+            return Err(Error::InvalidInput(format!(
+                "growing a band by -{minus}..{plus} cells"
+            )));
+        }
+        let mut runs = self.to_runs();
+        for r in &mut runs {
+            r.c[d - 1] -= minus;
+            r.len += (minus + plus) as u32;
+        }
+        normalize(&mut runs, d);
+        for a in 0..d - 1 {
+            let mut grown = Vec::with_capacity(runs.len() * (minus + plus + 1) as usize);
+            for r in &runs {
+                for t in r.c[a] - minus..=r.c[a] + plus {
+                    let mut q = *r;
+                    q.c[a] = t;
+                    grown.push(q);
+                }
+            }
+            normalize(&mut grown, d);
+            runs = grown;
+        }
+        let (mut lo, mut hi) = ([i32::MAX; 3], [i32::MIN; 3]);
+        for r in &runs {
+            for a in 0..d {
+                lo[a] = lo[a].min(r.c[a]);
+                let end = if a == d - 1 {
+                    r.c[a] + r.len as i32 - 1
+                } else {
+                    r.c[a]
+                };
+                hi[a] = hi[a].max(end);
+            }
+        }
+        Ok((from_runs(&runs)?, lo, hi))
+    }
+
     /// The corner nodes of the cells whose corner values `u` are neither all `> 0` nor all
     /// `< 0` (the cells the zero level of `u` meets): the seed of the band around that level.
     /// Error: [`Error::InvalidField`] when `u` does not have one value per node.
