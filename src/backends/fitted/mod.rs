@@ -15,6 +15,7 @@ mod curvature;
 mod extension;
 mod fit;
 mod reinit;
+pub mod solvation;
 mod stefan;
 
 pub use backend::{FittedBackend, FittedOptions, FittedRedistancing};
