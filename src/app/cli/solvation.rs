@@ -157,7 +157,7 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
         rep.gamma, rep.rho_w
     );
     println!(
-        "{:>6} {:>6} {:>12} {:>12} {:>12} {:>12} {:>5} {:>9} {:>9} {:>7}",
+        "{:>6} {:>6} {:>12} {:>12} {:>12} {:>12} {:>5} {:>5} {:>9} {:>9} {:>7}",
         "wrap",
         "steps",
         "G start",
@@ -165,14 +165,15 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
         "vdW",
         "G final",
         "comp",
-        "monotone",
+        "holes",
+        "max rise",
         "converged",
         "s"
     );
     for r in &rep.runs {
         let e = r.final_energy;
         println!(
-            "{:>6} {:>6} {:>12.5e} {:>12.5e} {:>12.5e} {:>12.5e} {:>5} {:>9} {:>9} {:>7.1}",
+            "{:>6} {:>6} {:>12.5e} {:>12.5e} {:>12.5e} {:>12.5e} {:>5} {:>5} {:>9.1e} {:>9} {:>7.1}",
             r.wrap,
             r.steps,
             r.records[0].energy.total,
@@ -180,7 +181,8 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
             e.vdw,
             e.total,
             r.components,
-            r.monotone,
+            e.holes,
+            r.largest_increase,
             r.converged,
             r.seconds
         );

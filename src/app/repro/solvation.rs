@@ -154,8 +154,8 @@ fn create_dir(d: &Path) -> Result<()> {
     std::fs::create_dir_all(d).map_err(|e| Error::io(d, e))
 }
 
-/// Writes `solvation.json`, `figures/solvation_<name>_energy.png` (the energies against the step
-/// per wrap) and `figures/solvation_<name>_<wrap>.png` (the final solute region shaded, the
+/// Writes `solvation.json`, `figures/solvation_<name>_<wrap>_energy.png` (the energies against
+/// the step) and `figures/solvation_<name>_<wrap>.png` (the final solute region shaded, the
 /// initial interface in orange, the final one in black, the circles `r = σ` in red).
 pub fn write(dir: &Path, name: &str, rep: &Report) -> Result<()> {
     let figs = dir.join("figures");
@@ -163,38 +163,50 @@ pub fn write(dir: &Path, name: &str, rep: &Report) -> Result<()> {
     atomic_write(&dir.join("solvation.json"), |w| {
         serde_json::to_writer_pretty(&mut *w, rep).map_err(std::io::Error::other)
     })?;
-    let mut series = Vec::new();
     for r in &rep.runs {
+        // A tight wrap starts with a van der Waals energy many orders above the final one: the
+        // plot starts where the total is within five energy scales of its final value.
+        let fin = r.final_energy;
+        let scale = fin.surface + fin.vdw.abs();
+        let k0 = r
+            .records
+            .iter()
+            .position(|s| (s.energy.total - fin.total).abs() <= 5.0 * scale)
+            .unwrap_or(0);
         let pick = |f: fn(&Energy) -> f64| -> Vec<(f64, f64)> {
-            r.records
+            r.records[k0..]
                 .iter()
                 .map(|s| (s.step as f64, f(&s.energy)))
                 .collect()
         };
-        for (what, f) in [
+        let series = [
             ("surface", (|e: &Energy| e.surface) as fn(&Energy) -> f64),
             ("van der Waals", |e: &Energy| e.vdw),
             ("total", |e: &Energy| e.total),
-        ] {
-            series.push(Series {
-                name: format!("{} wrap: {what}", r.wrap),
-                points: pick(f),
-                show_fit_slope: false,
-                style: SeriesStyle::Line,
-            });
-        }
+        ]
+        .into_iter()
+        .map(|(what, f)| Series {
+            name: what.into(),
+            points: pick(f),
+            show_fit_slope: false,
+            style: SeriesStyle::Line,
+        })
+        .collect();
+        lines_png(
+            &figs.join(format!("solvation_{name}_{}_energy.png", r.wrap)),
+            &LinesPlot {
+                title: format!(
+                    "{name}, {} wrap: free energy (001 (7.1)) from step {k0}",
+                    r.wrap
+                ),
+                x_label: "step".into(),
+                y_label: "energy".into(),
+                series,
+                width: 640,
+                height: 440,
+            },
+        )?;
     }
-    lines_png(
-        &figs.join(format!("solvation_{name}_energy.png")),
-        &LinesPlot {
-            title: format!("{name}: free energy against the step (001 (7.1))"),
-            x_label: "step".into(),
-            y_label: "energy".into(),
-            series,
-            width: 800,
-            height: 560,
-        },
-    )?;
     for r in &rep.runs {
         let Some((mesh, inside)) = &r.final_mesh else {
             continue;
