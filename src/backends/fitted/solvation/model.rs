@@ -104,9 +104,12 @@ impl System {
         for (i, p) in self.particles.iter().enumerate() {
             let inside =
                 p.x.is_finite() && p.x.x > lo.x && p.x.x < hi.x && p.x.y > lo.y && p.x.y < hi.y;
-            if !(inside && p.sigma.is_finite() && p.sigma > 0.0)
-                || !(p.epsilon.is_finite() && p.epsilon >= 0.0)
-            {
+            let valid = inside
+                && p.sigma.is_finite()
+                && p.sigma > 0.0
+                && p.epsilon.is_finite()
+                && p.epsilon >= 0.0;
+            if !valid {
                 return Err(Error::InvalidInput(format!(
                     "solvation: particle {i} at {} (sigma {}, epsilon {}) must lie inside the box \
                      with sigma > 0 and epsilon >= 0, finite",
@@ -115,9 +118,13 @@ impl System {
             }
         }
         let q = &self.params;
-        if !(q.gamma.is_finite() && q.gamma >= 0.0 && q.rho_w.is_finite() && q.rho_w >= 0.0)
-            || !(q.pressure.is_finite() && q.tolman.is_finite())
-        {
+        let valid = q.gamma.is_finite()
+            && q.gamma >= 0.0
+            && q.rho_w.is_finite()
+            && q.rho_w >= 0.0
+            && q.pressure.is_finite()
+            && q.tolman.is_finite();
+        if !valid {
             return Err(Error::InvalidInput(format!(
                 "solvation: need gamma >= 0, rho_w >= 0 and finite pressure and Tolman length \
                  (got {q:?})"
