@@ -21,6 +21,7 @@ mod metric_args;
 mod progress;
 mod redistance;
 mod shape;
+mod solvation;
 mod stefan;
 mod surface;
 mod triangulate;
@@ -59,6 +60,9 @@ enum Command {
     Fit(fit::FitArgs),
     /// The Stefan problem on the interface-fitted mesh (001 §6): Frank's circle.
     Stefan(stefan::StefanArgs),
+    /// Molecular solvation on the interface-fitted mesh (001 §7): relaxed solute surfaces and
+    /// their free energy; the two-rod sweep over the distance d.
+    Solvation(solvation::SolvationArgs),
     /// Speed benchmarks, with the peers (mmg2d, FreeFem++ BAMG) beside ours in the same run.
     #[command(subcommand)]
     Bench(bench::Bench),
@@ -139,6 +143,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Some(Command::Couette(a)) => flows::couette(a),
         Some(Command::Fit(a)) => fit::run(a),
         Some(Command::Stefan(a)) => stefan::run(a),
+        Some(Command::Solvation(a)) => solvation::run_cli(a),
         Some(Command::Bench(b)) => bench::run(b),
         Some(Command::Measure(a)) => measure::run(a),
         Some(Command::Metric(a)) => metric::run(a),

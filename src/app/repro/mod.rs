@@ -12,6 +12,7 @@ pub mod dtgrid_obj;
 pub mod peers;
 pub mod peers_fit;
 pub mod reinit;
+pub mod solvation;
 pub mod speed;
 pub mod stefan;
 pub mod surface_distance;

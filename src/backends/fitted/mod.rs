@@ -15,6 +15,7 @@ mod curvature;
 mod extension;
 mod fit;
 mod reinit;
+pub mod solvation;
 mod stefan;
 mod stefan_flux;
 
