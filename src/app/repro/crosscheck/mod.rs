@@ -16,7 +16,6 @@ mod problems;
 pub mod table41;
 
 use crate::app::plot::{loglog_png, LogLogPlot, Series};
-use anisomesh::backends::dtgrid::plane::DtGrid2Backend;
 use anisomesh::backends::dtgrid::DtGridBackend;
 use anisomesh::backends::fitted::FittedBackend;
 use anisomesh::backends::{AdaptedBackend, BuildSpec, LevelSetBackend, D2, D3};
@@ -54,7 +53,6 @@ pub fn level_set_backends() -> Vec<(&'static str, Build2)> {
     vec![
         entry2::<AdaptedBackend>("adapted"),
         entry2::<FittedBackend>("fitted"),
-        entry2::<DtGrid2Backend>("dtgrid"),
     ]
 }
 

@@ -54,15 +54,16 @@ pub struct DtGrid2Options {
 }
 
 impl Default for DtGrid2Options {
-    /// `j = 2`, Dirichlet conditions with up to 5 solves per step, `τ ≤ min(h², h/8)`, 2 cells
-    /// per advection sub-step.
+    /// `j = 2`, Dirichlet conditions with up to 5 solves per step, `τ ≤ h/8` (first order in
+    /// time and cheap; `tau_per_h2 = 1` with `tau_per_h = ∞` is 000's second-order scheme), 2
+    /// cells per advection sub-step.
     fn default() -> DtGrid2Options {
         DtGrid2Options {
             mcf: McfOptions {
                 j: 2,
                 ..McfOptions::default()
             },
-            tau_per_h2: 1.0,
+            tau_per_h2: f64::INFINITY,
             tau_per_h: 0.125,
             cfl: 2.0,
         }
@@ -284,14 +285,8 @@ impl DtGrid2Backend {
             e => e,
         })?;
         let reach = (2 * j + 4) as f64 * plane.h;
-        self.state.phi = extend_distance(
-            &plane,
-            &def_band,
-            &def_vals,
-            &nb.band,
-            Keep::OldBand,
-            reach,
-        );
+        self.state.phi =
+            extend_distance(&plane, &def_band, &def_vals, &nb.band, Keep::OldBand, reach);
         self.state.nb = nb;
         self.check_fit("the advected zero level")
     }
@@ -394,7 +389,12 @@ impl LevelSetBackend<D2> for DtGrid2Backend {
     fn redistance(&mut self) -> Result<StepReport> {
         let t0 = Instant::now();
         let mut rep = new_report();
-        let (nb, d) = rebuild(&self.state.plane, &self.state.nb, &self.state.phi, Keep::Nothing)?;
+        let (nb, d) = rebuild(
+            &self.state.plane,
+            &self.state.nb,
+            &self.state.phi,
+            Keep::Nothing,
+        )?;
         self.state.nb = nb;
         self.state.phi = d;
         rep.phases.redistance = t0.elapsed().as_secs_f64();

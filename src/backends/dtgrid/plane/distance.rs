@@ -252,7 +252,14 @@ mod tests {
                 .coords()
                 .map(|q| (plane.pos(q) - c).length_squared() - r * r)
                 .collect();
-            let d = extend_distance(&plane, &nb.band, &phi, &nb.band, Keep::Nothing, 8.0 * plane.h);
+            let d = extend_distance(
+                &plane,
+                &nb.band,
+                &phi,
+                &nb.band,
+                Keep::Nothing,
+                8.0 * plane.h,
+            );
             let w = nb
                 .band
                 .coords()
@@ -262,7 +269,14 @@ mod tests {
 
             worst.push(w);
             // Keeping the crossing corners keeps every sign.
-            let k = extend_distance(&plane, &nb.band, &phi, &nb.band, Keep::Crossing, 8.0 * plane.h);
+            let k = extend_distance(
+                &plane,
+                &nb.band,
+                &phi,
+                &nb.band,
+                Keep::Crossing,
+                8.0 * plane.h,
+            );
             for (a, b) in phi.iter().zip(&k) {
                 assert_eq!(*a < 0.0, *b < 0.0);
             }

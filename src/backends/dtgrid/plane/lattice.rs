@@ -32,7 +32,7 @@ impl Plane {
     /// Error: [`Error::InvalidInput`] for `n < 3`, more than `2^30` nodes per side or a spacing
     /// that is not finite and positive.
     pub fn new(n: usize, h: f64) -> Result<Plane> {
-        if !(3..=1 << 30).contains(&n) || !(h.is_finite() && h > 0.0) {
+        if !((3..=1 << 30).contains(&n) && h.is_finite() && h > 0.0) {
             return Err(Error::InvalidInput(format!(
                 "planar grid of {n} nodes per side (3 to 2^30) at spacing {h} (positive)"
             )));

@@ -112,7 +112,11 @@ pub fn zero_level(f: &Field<'_>) -> ZeroLevel {
                 let (from, to) = (CCW[i], CCW[(i + 1) % 4]);
                 let key = edge_key(cell, i);
                 // Ends in the key's order (lower node first).
-                let (vlo, vhi) = if i < 2 { (v[from], v[to]) } else { (v[to], v[from]) };
+                let (vlo, vhi) = if i < 2 {
+                    (v[from], v[to])
+                } else {
+                    (v[to], v[from])
+                };
                 (key, crossing(f, key, vlo, vhi))
             };
             let (start, a) = end_point(exit);

@@ -55,9 +55,9 @@ pub fn rebuild(
         .map(|(c, _)| c)
         .collect();
     let new = band_around(plane, &cross, nb.j).map_err(|e| match e {
-        Error::EmptyLevelSet(_) => Error::EmptyLevelSet(
-            "the zero level vanished (no band cell is crossed)".into(),
-        ),
+        Error::EmptyLevelSet(_) => {
+            Error::EmptyLevelSet("the zero level vanished (no band cell is crossed)".into())
+        }
         e => e,
     })?;
     let d = extend_distance(plane, &nb.band, phi, &new.band, keep, reach(plane, nb.j));
