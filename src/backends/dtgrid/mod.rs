@@ -33,4 +33,5 @@ pub use band::{Band, GridCoord};
 pub use grid::{DtCoord, DtGrid, Implicit};
 pub use sorted::SortedBand;
 pub mod obj;
+pub mod plane;
 pub mod reaction;

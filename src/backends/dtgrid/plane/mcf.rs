@@ -1,0 +1,155 @@
+//! Mean curvature motion of a planar level set on a narrow band (000 §2.2–§2.4 in two
+//! dimensions): each step solves `(M[Φ^k] + τ L[Φ^k]) Φ^{k+1} = M[Φ^k] Φ^k` (000 (2.5)) on the
+//! band, with Dirichlet values on its boundary layer (000 (2.12)) or natural conditions. With
+//! more than one solve per step (Dirichlet only) this is the nested inner iteration of 000 §2.4:
+//! after each solve the band is rebuilt around the new zero level and the new iterate replaced
+//! by its signed distance there ([`super::distance`]; the corners of the cut cells keep the
+//! iterate, renormalised, so redistancing does not move the zero level), `Φ^k` is extended onto
+//! the new band, and the step is solved again until the band stops changing and the boundary
+//! data change by less than `δ h`. After each step `Φ^{k+1}` is a signed distance on the band
+//! around its zero level.
+//!
+//! The options, phase times and step reports are the 3D band's ([`McfOptions`],
+//! [`StepReport`]); the linear systems are [`crate::backends::dtgrid::scheme`]'s.
+
+use super::distance::{extend_distance, Keep};
+use super::fem::{assemble, elements};
+use super::lattice::{band_around, crossing_cells_of_band, crossing_cells_of_fn, Plane};
+use super::Grid2;
+use crate::backends::dtgrid::band::Band;
+use crate::backends::dtgrid::lattice::NarrowBand;
+use crate::backends::dtgrid::mcf::{McfOptions, StepReport};
+use crate::backends::dtgrid::scheme::{solve_all, solve_dirichlet, system_matrix, Bc};
+use crate::error::{Error, Result};
+use crate::geom::DVec2;
+use std::time::Instant;
+
+/// A planar level set on a band (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct PlaneMcf {
+    /// The grid.
+    pub plane: Plane,
+    /// The band around the current zero level.
+    pub nb: NarrowBand<Grid2>,
+    /// `Φ` on the band nodes.
+    pub phi: Vec<f64>,
+}
+
+/// How far the distance extension looks: `2j + 4` cells.
+fn reach(plane: &Plane, j: usize) -> f64 {
+    (2 * j + 4) as f64 * plane.h
+}
+
+/// The band of half-width `nb.j` around the zero level of `phi` on `nb` and the signed distance
+/// to that zero level on it, keeping the values of `phi` where `keep` says.
+/// Errors: [`Error::EmptyLevelSet`] when the zero level has vanished, [`Error::InvalidInput`]
+/// when the band leaves the grid.
+pub fn rebuild(
+    plane: &Plane,
+    nb: &NarrowBand<Grid2>,
+    phi: &[f64],
+    keep: Keep,
+) -> Result<(NarrowBand<Grid2>, Vec<f64>)> {
+    let cross: Vec<_> = crossing_cells_of_band(&nb.band, phi)
+        .into_iter()
+        .map(|(c, _)| c)
+        .collect();
+    let new = band_around(plane, &cross, nb.j).map_err(|e| match e {
+        Error::EmptyLevelSet(_) => {
+            Error::EmptyLevelSet("the zero level vanished (no band cell is crossed)".into())
+        }
+        e => e,
+    })?;
+    let d = extend_distance(plane, &nb.band, phi, &new.band, keep, reach(plane, nb.j));
+    Ok((new, d))
+}
+
+impl PlaneMcf {
+    /// The level set `f` (negative inside, local coordinates) on `plane`: the band of
+    /// half-width `j` around its zero level carrying the signed distance to that zero level.
+    /// Errors: [`Error::EmptyLevelSet`], [`Error::InvalidInput`] (the shape does not fit),
+    /// [`Error::InvalidField`] (NaN in `f`).
+    pub fn new(plane: Plane, j: usize, f: &(impl Fn(DVec2) -> f64 + Sync)) -> Result<PlaneMcf> {
+        let cross = crossing_cells_of_fn(&plane, f)?;
+        let nb = band_around(&plane, &cross, j)?;
+        let v: Vec<f64> = nb.band.coords().map(|c| f(plane.pos(c))).collect();
+        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+            return Err(Error::InvalidField {
+                name: "level-set function".into(),
+                msg: format!("{} at band node {:?}", v[i], nb.band.coords().nth(i)),
+            });
+        }
+        let (nb, phi) = rebuild(&plane, &nb, &v, Keep::Nothing)?;
+        Ok(PlaneMcf { plane, nb, phi })
+    }
+
+    /// One time step of length `tau` under `o` (Dirichlet or natural conditions).
+    /// Errors: [`Error::InvalidInput`] for a bad `tau`, no solve per step or transparent
+    /// conditions (not available in the plane), or a band that leaves the grid;
+    /// [`Error::EmptyLevelSet`] when the zero level vanishes; solver errors.
+    pub fn step(&mut self, tau: f64, o: &McfOptions) -> Result<StepReport> {
+        if !(tau.is_finite() && tau > 0.0) || o.inner == 0 || o.bc == Bc::Transparent {
+            return Err(Error::InvalidInput(format!(
+                "planar mean curvature step: tau = {tau}, solves per step = {}, conditions {} \
+                 (tau and solves positive; dirichlet or natural)",
+                o.inner,
+                o.bc.name()
+            )));
+        }
+        let plane = self.plane;
+        let mut rep = StepReport::default();
+        let mut nb = self.nb.clone();
+        let mut phik = self.phi.clone();
+        let mut approx = self.phi.clone();
+        let solves = if o.bc == Bc::Dirichlet { o.inner } else { 1 };
+        for m in 1..=solves {
+            let t = Instant::now();
+            let n = nb.band.len();
+            let mats = assemble(&plane, &elements(&nb), n, &phik, o.eps)?;
+            let a = system_matrix(&mats, tau)?;
+            let b: Vec<f64> = mats.mass.iter().zip(&phik).map(|(m, p)| m * p).collect();
+            rep.times.assembly += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let mut x = approx.clone();
+            rep.cg_iterations += if o.bc == Bc::Dirichlet {
+                let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
+                solve_dirichlet(&a, &b, &fixed, &mut x)?
+            } else {
+                solve_all(&a, &b, &mut x)?
+            };
+            rep.solves += 1;
+            rep.times.solve += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let (new_nb, new_approx) = rebuild(&plane, &nb, &x, Keep::Crossing)?;
+            let same =
+                new_nb.band.len() == nb.band.len() && new_nb.band.coords().eq(nb.band.coords());
+            let change = new_nb
+                .band
+                .coords()
+                .zip(&new_approx)
+                .zip(&new_nb.interior)
+                .filter(|(_, &int)| !int)
+                .filter_map(|((c, v), _)| nb.band.index(c).map(|k| (v - approx[k]).abs()))
+                .fold(0.0f64, f64::max);
+            if m < solves {
+                phik = extend_distance(
+                    &plane,
+                    &self.nb.band,
+                    &self.phi,
+                    &new_nb.band,
+                    Keep::OldBand,
+                    reach(&plane, nb.j),
+                );
+            }
+            nb = new_nb;
+            approx = new_approx;
+            rep.times.rebuild += t.elapsed().as_secs_f64();
+            if same && change < o.delta * plane.h {
+                break;
+            }
+        }
+        self.nb = nb;
+        self.phi = approx;
+        Ok(rep)
+    }
+}

@@ -1,0 +1,209 @@
+//! The planar DT-Grid narrow band through the level-set back-end contract: a circle shrinking
+//! by curvature against R(t) = √(R0² − 2t) with its order between grids, the enclosed area of a
+//! circle, the curvature of a circle and of an ellipse given by a non-distance function,
+//! Zalesak's disk under rotation, and the typed errors.
+
+use anisomesh::backends::dtgrid::plane::{DtGrid2Backend, DtGrid2Options};
+use anisomesh::backends::{BuildSpec, FnShape, LevelSetBackend};
+use anisomesh::levelset::{Circle, Shape, Zalesak};
+use anisomesh::{DVec2, Error};
+use std::f64::consts::PI;
+
+const LO: DVec2 = DVec2::new(-0.5, -0.5);
+const HI: DVec2 = DVec2::new(0.5, 0.5);
+
+fn build_with(shape: &dyn Shape, h: f64, o: DtGrid2Options) -> anisomesh::Result<DtGrid2Backend> {
+    DtGrid2Backend::new(
+        &BuildSpec {
+            function: shape,
+            domain: (LO, HI),
+            resolution: h,
+        },
+        o,
+    )
+}
+
+fn build(shape: &dyn Shape, h: f64) -> anisomesh::Result<DtGrid2Backend> {
+    build_with(shape, h, DtGrid2Options::default())
+}
+
+fn circle(r: f64) -> Circle {
+    Circle {
+        centre: DVec2::new(0.03, -0.02),
+        radius: r,
+    }
+}
+
+/// The radius of the disk with the back end's enclosed area.
+fn radius(b: &DtGrid2Backend) -> f64 {
+    (b.enclosed_measure().unwrap() / PI).sqrt()
+}
+
+fn order(e: &[f64]) -> Vec<f64> {
+    e.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
+}
+
+/// The circle R0 = 0.3 to t = 0.005 at h = 1/32, 1/64 (and 1/128 with `fine`) under `o`.
+fn circle_errors(o: DtGrid2Options, levels: usize) -> Vec<f64> {
+    let (r0, t): (f64, f64) = (0.3, 0.005);
+    let exact = (r0 * r0 - 2.0 * t).sqrt();
+    (0..levels)
+        .map(|k| {
+            let h = 1.0 / (32 << k) as f64;
+            let mut b = build_with(&circle(r0), h, o).unwrap();
+            for _ in 0..4 {
+                let rep = b.advance_mean_curvature(t / 4.0).unwrap();
+                assert!(rep.inner_iterations > 0 && rep.dof == b.dof());
+            }
+            assert!((b.time() - t).abs() < 1e-15);
+            (radius(&b) - exact).abs()
+        })
+        .collect()
+}
+
+#[test]
+fn circle_shrinks_at_second_order_with_tau_h2() {
+    let best = DtGrid2Options {
+        tau_per_h: f64::INFINITY,
+        tau_per_h2: 1.0,
+        ..DtGrid2Options::default()
+    };
+    let e2 = circle_errors(best, 2);
+    // Measured 2.09e-4 -> 9.4e-6. The default τ ≤ h/8 (first order) is checked by the
+    // cross-check, which refines the time step with h.
+    eprintln!("tau = h²: {e2:?} {:?}", order(&e2));
+    assert!(order(&e2)[0] >= 1.7 && e2[1] < 1e-4, "{e2:?}");
+}
+
+#[test]
+fn enclosed_area_length_and_redistancing_of_a_circle() {
+    let r = 0.31;
+    let mut errs = Vec::new();
+    for h in [1.0 / 32.0, 1.0 / 64.0] {
+        let b = build(&circle(r), h).unwrap();
+        errs.push((b.enclosed_measure().unwrap() / (PI * r * r) - 1.0).abs());
+        assert!((b.interface_measure().unwrap() / (2.0 * PI * r) - 1.0).abs() < 1e-3);
+        let z = b.zero_level().unwrap();
+        assert_eq!(z.len(), 1);
+        assert!(z[0].closed);
+        // Point values: the signed distance near the circle, None far from it.
+        let c = circle(r).centre;
+        let v = b
+            .evaluate(&[c + DVec2::new(r + 0.01, 0.0), c, DVec2::splat(3.0)])
+            .unwrap();
+        assert!((v[0].unwrap() - 0.01).abs() < 1e-3 && v[1].is_none() && v[2].is_none());
+    }
+    eprintln!("area errors {errs:?}");
+    assert!(errs[1] < 2e-5 && errs[1] < errs[0] / 4.0, "{errs:?}");
+    // Redistancing a field that is already a distance moves the area by little.
+    let mut b = build(&circle(r), 1.0 / 64.0).unwrap();
+    let a0 = b.enclosed_measure().unwrap();
+    for _ in 0..10 {
+        b.redistance().unwrap();
+    }
+    let drift = (b.enclosed_measure().unwrap() / a0 - 1.0).abs();
+    eprintln!("area drift after 10 redistancings {drift:.2e}");
+    assert!(drift < 1e-3, "{drift}");
+}
+
+/// Mean relative curvature error of the samples against `exact`.
+fn curvature_error(b: &DtGrid2Backend, exact: impl Fn(DVec2) -> f64) -> f64 {
+    let s = b.interface_curvature().unwrap();
+    assert!(s.len() > 10);
+    s.points
+        .iter()
+        .zip(&s.values)
+        .map(|(&p, &k)| ((k - exact(p)) / exact(p)).abs())
+        .sum::<f64>()
+        / s.len() as f64
+}
+
+#[test]
+fn curvature_of_a_circle_and_of_an_ellipse_converges() {
+    let (a, bb) = (0.35, 0.2);
+    let ell = FnShape::new("ellipse", move |p: DVec2| {
+        p.x * p.x / (a * a) + p.y * p.y / (bb * bb) - 1.0
+    });
+    let ell_k = |p: DVec2| {
+        let (fx, fy) = (2.0 * p.x / (a * a), 2.0 * p.y / (bb * bb));
+        let g = (fx * fx + fy * fy).sqrt();
+        (2.0 / (a * a) * fy * fy + 2.0 / (bb * bb) * fx * fx) / (g * g * g)
+    };
+    let c = circle(0.3);
+    let (mut ec, mut ee) = (Vec::new(), Vec::new());
+    for h in [1.0 / 40.0, 1.0 / 80.0, 1.0 / 160.0] {
+        ec.push(curvature_error(&build(&c, h).unwrap(), |p| {
+            1.0 / (p - c.centre).length()
+        }));
+        ee.push(curvature_error(&build(&ell, h).unwrap(), ell_k));
+    }
+    eprintln!(
+        "circle {ec:?} {:?}; ellipse {ee:?} {:?}",
+        order(&ec),
+        order(&ee)
+    );
+    for e in [&ec, &ee] {
+        assert!(order(e).iter().all(|&o| o >= 1.0) && e[2] < 1e-2, "{e:?}");
+    }
+}
+
+#[test]
+fn zalesak_rotation_keeps_the_area() {
+    let shape = Zalesak::default();
+    let exact = shape.exact_area().unwrap();
+    let mut errs = Vec::new();
+    for h in [0.02, 0.01] {
+        let mut b = DtGrid2Backend::new(
+            &BuildSpec {
+                function: &shape,
+                domain: (DVec2::splat(-2.0), DVec2::splat(2.0)),
+                resolution: h,
+            },
+            DtGrid2Options::default(),
+        )
+        .unwrap();
+        let v = |_t: f64, x: DVec2| DVec2::new(-x.y, x.x);
+        for _ in 0..16 {
+            b.advect(&v, 2.0 * PI / 16.0).unwrap();
+        }
+        errs.push((b.enclosed_measure().unwrap() / exact - 1.0).abs());
+    }
+    eprintln!("zalesak area errors {errs:?}");
+    assert!(
+        errs.iter().all(|&e| e < 2e-2) && errs[1] < errs[0],
+        "{errs:?}"
+    );
+}
+
+#[test]
+fn typed_errors() {
+    let c = circle(0.3);
+    // No zero level in the domain.
+    let none = FnShape::new("nothing", |p: DVec2| p.length() + 1.0);
+    assert!(matches!(build(&none, 0.05), Err(Error::EmptyLevelSet(_))));
+    // A band wider than the grid.
+    assert!(matches!(build(&c, 0.3), Err(Error::InvalidInput(_))));
+    // A NaN of the function.
+    let nan = FnShape::new("nan", |p: DVec2| if p.x > 0.2 { f64::NAN } else { p.x });
+    assert!(matches!(build(&nan, 0.05), Err(Error::InvalidField { .. })));
+    // A shape that does not fit, bad options, bad steps.
+    assert!(matches!(
+        build(&circle(0.49), 0.02),
+        Err(Error::InvalidInput(_))
+    ));
+    let bad = DtGrid2Options {
+        cfl: f64::NAN,
+        ..DtGrid2Options::default()
+    };
+    assert!(build_with(&c, 0.05, bad).is_err());
+    let mut b = build(&circle(0.1), 0.02).unwrap();
+    assert!(b.advance_mean_curvature(f64::NAN).is_err());
+    let v = |_t: f64, _x: DVec2| DVec2::splat(f64::NAN);
+    assert!(matches!(b.advect(&v, 0.1), Err(Error::InvalidField { .. })));
+    // The circle vanishes at t = r²/2 = 0.005.
+    let mut b = build(&circle(0.1), 0.02).unwrap();
+    assert!(matches!(
+        b.advance_mean_curvature(0.01),
+        Err(Error::EmptyLevelSet(_))
+    ));
+}
