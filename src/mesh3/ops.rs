@@ -19,6 +19,12 @@ impl EditMesh3 {
     /// Whether `(a, b)` is an edge (some tetrahedron contains both).
     #[inline]
     pub fn is_edge(&self, a: u32, b: u32) -> bool {
+        // Scan the smaller ball.
+        let (a, b) = if self.ball[a as usize].len() <= self.ball[b as usize].len() {
+            (a, b)
+        } else {
+            (b, a)
+        };
         self.ball[a as usize]
             .iter()
             .any(|&t| self.tets[t as usize].contains(&b))
