@@ -261,3 +261,56 @@ fn edge_removal_finds_the_best_triangulation() {
     }
     assert!(compared > 10, "{compared} edges compared");
 }
+
+/// Every cached value left after an edit belongs to a tetrahedron that the edit did not touch:
+/// same slot, same vertices, no vertex moved.
+#[test]
+fn edits_reset_the_cache_of_what_they_change() {
+    let mut e = cube(3);
+    let mut seed = 12345u64;
+    let mut next = |n: usize| {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 33) as usize % n
+    };
+    for step in 0..200 {
+        e.cache.iter_mut().for_each(|c| *c = 1.0);
+        let (tets, points) = (e.tets.clone(), e.points.clone());
+        let es = edges(&e);
+        let (a, b) = es[next(es.len())];
+        let (pa, pb) = (e.points[a as usize], e.points[b as usize]);
+        match step % 4 {
+            0 => {
+                e.split_edge(a, b, 0.5 * (pa + pb));
+            }
+            1 => {
+                e.collapse_edge(a, b);
+            }
+            2 => {
+                if let Some((_, new)) =
+                    e.best_edge_removal(a, b, f64::NEG_INFINITY, |_| 1.0, |_, _| true)
+                {
+                    e.replace_shell(a, b, &new);
+                }
+            }
+            _ => {
+                e.move_vertex(a, pa + 0.1 * (pb - pa));
+            }
+        }
+        e.check().unwrap();
+        assert_eq!(e.cache.len(), e.tets.len());
+        for (t, &c) in e.cache.iter().enumerate() {
+            if c.is_nan() || e.tets[t][0] == u32::MAX {
+                continue;
+            }
+            assert!(
+                t < tets.len() && e.tets[t] == tets[t],
+                "step {step}: slot {t}"
+            );
+            for v in e.tets[t] {
+                assert_eq!(e.points[v as usize], points[v as usize], "step {step}");
+            }
+        }
+    }
+}

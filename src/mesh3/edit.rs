@@ -44,6 +44,11 @@ pub struct EditMesh3 {
     pub on_boundary: Vec<bool>,
     /// Removed tetrahedron slots, reused by later edits.
     pub(super) free: Vec<u32>,
+    /// A value cached per tetrahedron slot by the caller (the adaptation keeps its quality
+    /// there), `NaN` when unknown: every edit that adds or removes a tetrahedron, or moves one
+    /// of its vertices, resets it, so a value that is not `NaN` belongs to the current
+    /// tetrahedron with its current vertex positions.
+    pub cache: Vec<f64>,
 }
 
 /// The sorted vertices of a triangle.
@@ -77,6 +82,7 @@ impl EditMesh3 {
             bfaces: HashMap::new(),
             on_boundary: vec![false; m.n_points()],
             free: Vec::new(),
+            cache: vec![f64::NAN; m.n_tets()],
         };
         for (t, tet) in m.tets.iter().enumerate() {
             for &v in tet {
@@ -189,6 +195,23 @@ impl EditMesh3 {
             .collect()
     }
 
+    /// The two tetrahedra on the triangle `f`, or `None` when it is not an interior face.
+    pub fn face_pair(&self, f: [u32; 3]) -> Option<[u32; 2]> {
+        let mut out = [0u32; 2];
+        let mut n = 0;
+        for &t in &self.ball[f[0] as usize] {
+            let tet = &self.tets[t as usize];
+            if tet.contains(&f[1]) && tet.contains(&f[2]) {
+                if n == 2 {
+                    return None;
+                }
+                out[n] = t;
+                n += 1;
+            }
+        }
+        (n == 2).then_some(out)
+    }
+
     /// Whether `(a, b)` is an edge of a boundary triangle.
     pub fn is_boundary_edge(&self, a: u32, b: u32) -> bool {
         self.ball[a as usize].iter().any(|&t| {
@@ -253,11 +276,13 @@ impl EditMesh3 {
             Some(t) => {
                 self.tets[t as usize] = tet;
                 self.tet_ref[t as usize] = r;
+                self.cache[t as usize] = f64::NAN;
                 t
             }
             None => {
                 self.tets.push(tet);
                 self.tet_ref.push(r);
+                self.cache.push(f64::NAN);
                 (self.tets.len() - 1) as u32
             }
         };
@@ -277,6 +302,7 @@ impl EditMesh3 {
             }
         }
         self.tets[t as usize] = [NONE; 4];
+        self.cache[t as usize] = f64::NAN;
         self.free.push(t);
     }
 
@@ -313,6 +339,7 @@ impl EditMesh3 {
         self.on_boundary = old.iter().map(|&v| self.on_boundary[v as usize]).collect();
         self.tets = live.iter().map(|x| x.1).collect();
         self.tet_ref = live.iter().map(|x| x.2).collect();
+        self.cache = vec![f64::NAN; self.tets.len()];
         self.free.clear();
         self.ball = vec![Vec::new(); self.points.len()];
         for (t, tet) in self.tets.iter().enumerate() {

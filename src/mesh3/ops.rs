@@ -19,6 +19,12 @@ impl EditMesh3 {
     /// Whether `(a, b)` is an edge (some tetrahedron contains both).
     #[inline]
     pub fn is_edge(&self, a: u32, b: u32) -> bool {
+        // Scan the smaller ball.
+        let (a, b) = if self.ball[a as usize].len() <= self.ball[b as usize].len() {
+            (a, b)
+        } else {
+            (b, a)
+        };
         self.ball[a as usize]
             .iter()
             .any(|&t| self.tets[t as usize].contains(&b))
@@ -174,30 +180,52 @@ impl EditMesh3 {
     /// every `(a, b, c_i, c_{i+1})` positively oriented, or `None` for a boundary edge, an edge
     /// whose shell has several sub-domains, or a ring longer than [`MAX_RING`].
     pub fn edge_ring(&self, a: u32, b: u32) -> Option<Vec<u32>> {
-        let mut shell = Vec::new();
-        self.shell(a, b, &mut shell);
-        if shell.len() < 3 || shell.len() > MAX_RING {
-            return None;
-        }
-        let r0 = self.tet_ref[shell[0] as usize];
-        let mut next = Vec::with_capacity(shell.len());
-        for &t in &shell {
-            if self.tet_ref[t as usize] != r0 {
+        // (c, d) per shell tetrahedron, in the positive order (a, b, c, d): tetrahedra are
+        // positively oriented, so that order is the tetrahedron's own up to an even
+        // permutation (no volume to evaluate, no allocation).
+        let mut next = [(0u32, 0u32); MAX_RING];
+        let mut n = 0;
+        let mut r0 = None;
+        for &t in &self.ball[a as usize] {
+            let tet = self.tets[t as usize];
+            let Some(ib) = tet.iter().position(|&v| v == b) else {
+                continue;
+            };
+            if n == MAX_RING {
                 return None;
             }
-            let tet = self.tets[t as usize];
-            // The positive order (a, b, c, d) of the two other vertices.
-            let rest: Vec<u32> = tet.iter().copied().filter(|&v| v != a && v != b).collect();
-            let (c, d) = if self.vol([a, b, rest[0], rest[1]]) > 0.0 {
-                (rest[0], rest[1])
-            } else {
-                (rest[1], rest[0])
-            };
-            next.push((c, d));
+            let r = self.tet_ref[t as usize];
+            if *r0.get_or_insert(r) != r {
+                return None;
+            }
+            let ia = tet.iter().position(|&v| v == a)?;
+            let mut rest = [0usize; 2];
+            let mut k = 0;
+            for i in 0..4 {
+                if i != ia && i != ib {
+                    rest[k] = i;
+                    k += 1;
+                }
+            }
+            let perm = [ia, ib, rest[0], rest[1]];
+            let mut inversions = 0;
+            for i in 0..4 {
+                for j in i + 1..4 {
+                    inversions += usize::from(perm[i] > perm[j]);
+                }
+            }
+            let (c, d) = (tet[rest[0]], tet[rest[1]]);
+            next[n] = if inversions % 2 == 0 { (c, d) } else { (d, c) };
+            n += 1;
         }
-        let mut ring = vec![next[0].0];
+        if n < 3 {
+            return None;
+        }
+        let next = &next[..n];
+        let mut ring = Vec::with_capacity(n);
+        ring.push(next[0].0);
         let mut cur = next[0].1;
-        while ring.len() < next.len() {
+        while ring.len() < n {
             ring.push(cur);
             cur = next.iter().find(|x| x.0 == cur)?.1;
         }
@@ -317,8 +345,8 @@ impl EditMesh3 {
     /// the three around the new edge `(d, e)`. Returns them, or `None` when `f` is on the
     /// boundary, between sub-domains, `(d, e)` is already an edge or does not cross `f`.
     pub fn face_swap_check(&self, f: [u32; 3]) -> Option<[[u32; 4]; 3]> {
-        let ts = self.face_tets(f);
-        if ts.len() != 2 || self.tet_ref[ts[0] as usize] != self.tet_ref[ts[1] as usize] {
+        let ts = self.face_pair(f)?;
+        if self.tet_ref[ts[0] as usize] != self.tet_ref[ts[1] as usize] {
             return None;
         }
         let apex = |t: u32| {
@@ -347,7 +375,9 @@ impl EditMesh3 {
 
     /// Applies a 2-3 swap of `f` planned by [`EditMesh3::face_swap_check`].
     pub fn face_swap_apply(&mut self, f: [u32; 3], new: [[u32; 4]; 3]) {
-        let ts = self.face_tets(f);
+        let Some(ts) = self.face_pair(f) else {
+            return;
+        };
         let r = self.tet_ref[ts[0] as usize];
         for t in ts {
             self.remove_tet(t);
@@ -383,6 +413,9 @@ impl EditMesh3 {
             return false;
         }
         self.points[v as usize] = p;
+        for &t in &self.ball[v as usize] {
+            self.cache[t as usize] = f64::NAN;
+        }
         true
     }
 }

@@ -160,7 +160,8 @@ impl<'a> Ctx<'a> {
     }
 
     /// Caches in `tq` the quality of every live tetrahedron with a vertex changed since pass
-    /// `since` (infinity for the others) and returns those below `q`.
+    /// `since` (infinity for the others) and returns those below `q`. Qualities not yet known
+    /// are computed (in parallel) and kept in the mesh's per-tetrahedron cache.
     pub fn bad_tets(&mut self, q: f64, since: u32) -> Vec<u32> {
         use rayon::prelude::*;
         let tq: Vec<f64> = (0..self.mesh.tets.len() as u32)
@@ -176,16 +177,34 @@ impl<'a> Ctx<'a> {
                 }
             })
             .collect();
+        for (t, &x) in tq.iter().enumerate() {
+            if x.is_finite() {
+                self.mesh.cache[t] = x;
+            }
+        }
         self.tq = tq;
         (0..self.tq.len() as u32)
             .filter(|&t| self.tq[t as usize] < q)
             .collect()
     }
 
-    /// Quality of the live tetrahedron with index `t`.
+    /// Quality of the live tetrahedron with index `t` (from the mesh's cache when known).
     #[inline]
     pub fn tet_quality(&self, t: u32) -> f64 {
-        self.quality_of(self.mesh.tets[t as usize], None)
+        let c = self.mesh.cache[t as usize];
+        if c.is_nan() {
+            self.quality_of(self.mesh.tets[t as usize], None)
+        } else {
+            c
+        }
+    }
+
+    /// Quality of the live tetrahedron with index `t`, kept in the mesh's cache.
+    #[inline]
+    pub fn cached_quality(&mut self, t: u32) -> f64 {
+        let q = self.tet_quality(t);
+        self.mesh.cache[t as usize] = q;
+        q
     }
 
     /// The worst quality in the ball of `v`.

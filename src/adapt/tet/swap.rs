@@ -61,12 +61,13 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
         (_, a, b): Self::Key,
         _: Option<()>,
     ) -> Option<Self::Plan> {
-        let mut shell = Vec::new();
-        ctx.mesh.shell(a, b, &mut shell);
-        let q0 = shell
-            .iter()
-            .map(|&t| ctx.tet_quality(t))
-            .fold(f64::INFINITY, f64::min);
+        let mut q0 = f64::INFINITY;
+        for k in 0..ctx.mesh.ball[a as usize].len() {
+            let t = ctx.mesh.ball[a as usize][k];
+            if ctx.mesh.tets[t as usize].contains(&b) {
+                q0 = q0.min(ctx.cached_quality(t));
+            }
+        }
         let c = &*ctx;
         let (q, tets) = c.mesh.best_edge_removal(
             a,
@@ -129,12 +130,8 @@ impl Operator<Ctx<'_>> for FaceSwap {
         if ctx.length(new[0][0], new[0][1]) > ctx.l_max {
             return None;
         }
-        let q0 = ctx
-            .mesh
-            .face_tets(f)
-            .iter()
-            .map(|&t| ctx.tet_quality(t))
-            .fold(f64::INFINITY, f64::min);
+        let [t0, t1] = ctx.mesh.face_pair(f)?;
+        let q0 = ctx.cached_quality(t0).min(ctx.cached_quality(t1));
         let q1 = new
             .iter()
             .map(|&t| ctx.quality_of(t, None))

@@ -26,6 +26,27 @@ pub enum Bench {
     /// Exact signed distance to a triangulated surface: hierarchy build and query speed on an
     /// icosphere, checked against the sphere within the chord error.
     SurfaceDistance(crate::app::repro::surface_distance::SurfaceDistanceArgs),
+    /// Tetrahedral adaptation speed: UGAWG cube-linear scaled to each requested vertex count,
+    /// anisomesh and mmg3d_O3 on the same metric in the same run (CPU seconds, vertices per
+    /// second, edges in range, worst mean ratio). One thread: RAYON_NUM_THREADS=1.
+    Tet(TetArgs),
+}
+
+/// Options of `anisomesh bench tet`.
+#[derive(Debug, Args)]
+pub struct TetArgs {
+    /// The vertex counts (comma-separated).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1e4, 1e5])]
+    vertices: Vec<f64>,
+    /// Without mmg3d.
+    #[arg(long)]
+    no_mmg3d: bool,
+    /// Time limit of each mmg3d run, in seconds.
+    #[arg(long, default_value_t = 3600)]
+    timeout: u64,
+    /// Output directory (the inputs and mmg3d's meshes).
+    #[arg(short, long, default_value = "out/bench_tet")]
+    output: PathBuf,
 }
 
 /// Options of `anisomesh bench speed`.
@@ -85,7 +106,30 @@ pub fn run(b: Bench) -> Result<()> {
         Bench::Redistance(a) => redistance(a),
         Bench::Band(a) => crate::app::repro::band_memory::run(a),
         Bench::SurfaceDistance(a) => crate::app::repro::surface_distance::run(a),
+        Bench::Tet(a) => tet(a),
     }
+}
+
+fn tet(a: TetArgs) -> Result<()> {
+    println!(
+        "{:<10} {:>9} {:>9} {:>9} {:>9} {:>11} {:>9} {:>9}",
+        "mesher", "target", "vertices", "cpu_s", "wall_s", "vertices/s", "in_range", "q_min"
+    );
+    let timeout = Duration::from_secs(a.timeout);
+    super::bench_tet::run(&a.vertices, !a.no_mmg3d, timeout, &a.output, |r| {
+        println!(
+            "{:<10} {:>9.0e} {:>9} {:>9.2} {:>9.2} {:>11.0} {:>8.2}% {:>9.3}",
+            r.mesher,
+            r.target,
+            r.vertices,
+            r.cpu,
+            r.wall,
+            r.vertices as f64 / r.cpu,
+            100.0 * r.in_range,
+            r.quality_min
+        );
+    })?;
+    Ok(())
 }
 
 fn speed(a: SpeedArgs) -> Result<()> {
