@@ -28,6 +28,9 @@ use std::time::Instant;
 /// Quality (mean ratio) a conformity collapse or move may go down to when the ball was better.
 pub(crate) const Q_KEEP: f64 = 0.5;
 
+/// Tetrahedra below this quality are repaired after the loop ([`super::improve`]).
+const Q_REPAIR: f64 = 0.55;
+
 /// Most rounds of the loop.
 const ROUNDS: usize = 16;
 
@@ -202,6 +205,15 @@ pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptRepo
             break;
         }
         share = s;
+    }
+    for _ in 0..3 {
+        let n = record(ctx, PassKind::Smooth, opts, rep, |c| {
+            super::improve::pass(c, Q_REPAIR)
+        })?;
+        record(ctx, PassKind::Flip, opts, rep, super::swap::pass)?;
+        if n == 0 {
+            break;
+        }
     }
     Ok(())
 }

@@ -17,6 +17,7 @@
 
 pub(crate) mod collapse;
 pub(crate) mod conform;
+pub(crate) mod improve;
 pub(crate) mod merge;
 pub mod run;
 pub(crate) mod smooth;
