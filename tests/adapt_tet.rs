@@ -34,7 +34,7 @@ fn unit_cube(cells: usize) -> Run3Options {
 fn cube_linear_coarse_conformity() {
     let f = cube_linear(0.05);
     let a = run3(Target3::Metric(&f), None, &unit_cube(4)).unwrap();
-    // h0 = 0.05: about 3,000 vertices.
+    // h0 = 0.05: about 2,600 vertices; measured 97.8 % in range, worst mean ratio 0.563.
     a.mesh.check().unwrap();
     let r = &a.report;
     eprintln!(
@@ -42,8 +42,8 @@ fn cube_linear_coarse_conformity() {
         r.vertices, r.tetrahedra, r.edge_length_in_range, r.quality_min, r.stats.quality_mean, r.seconds, r.adapt.cycles
     );
     assert!((a.mesh.volume() - 1.0).abs() < 1e-12);
-    assert!(r.edge_length_in_range > 0.9, "{}", r.edge_length_in_range);
-    assert!(r.quality_min > 0.45, "{}", r.quality_min);
+    assert!(r.edge_length_in_range > 0.96, "{}", r.edge_length_in_range);
+    assert!(r.quality_min > 0.52, "{}", r.quality_min);
 }
 
 #[test]

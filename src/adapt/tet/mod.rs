@@ -16,6 +16,9 @@
 //! vertex metrics; it equals `Q_ani^{-2/3}` of 004 §3.4 for that `M`.
 
 pub(crate) mod collapse;
+pub(crate) mod conform;
+pub(crate) mod improve;
+pub(crate) mod merge;
 pub mod run;
 pub(crate) mod smooth;
 pub(crate) mod split;

@@ -200,6 +200,7 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     let mut rep = AdaptReport::default();
     run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
     final_sweep(&mut ctx, &opts.adapt, &mut rep)?;
+    super::conform::polish(&mut ctx, &opts.adapt, &mut rep)?;
     let (mesh, old) = ctx.mesh.to_mesh();
     let metric: Vec<Sym3> = old.iter().map(|&v| ctx.metric[v as usize]).collect();
     rep.seconds = clock.elapsed().as_secs_f64();

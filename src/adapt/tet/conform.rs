@@ -1,0 +1,219 @@
+//! The final conformity loop: after the split / collapse / swap / smoothing cycle has reached
+//! its fixed point, the edges still outside `[l_min, l_max]` are worked on directly, in rounds
+//! of
+//! 1. *conformity collapses* ([`collapse_pass`]): every edge shorter than `l_min`, shortest
+//!    first, is collapsed in whichever direction leaves the better new ball, when the new
+//!    edges are at most `l_max` and the worst quality of the new ball is at least the worst of
+//!    the old one or [`Q_KEEP`];
+//! 2. a split pass (edges longer than `l_max`), a swap pass;
+//! 3. *length smoothing* ([`length_smooth_pass`]): each free vertex moves toward the mean of
+//!    the points at unit metric distance from its neighbours along its current edges, accepted
+//!    when the squared log-lengths of its edges decrease, no edge leaves the range, and the
+//!    worst quality of its ball stays at least its old worst or [`Q_KEEP`];
+//!
+//! until the share of edges in range stops rising (004 §3.5: all edges in `[l_min, l_max]`,
+//! quality near one). Every candidate is checked on the current mesh when its turn comes and
+//! the visits are sequential in a fixed order, so the result does not depend on the thread
+//! count.
+
+use super::Ctx;
+use crate::adapt::cycle::Remesher;
+use crate::adapt::options::{AdaptOptions, AdaptReport, PassKind, PassReport};
+use crate::error::Result;
+use crate::geom::DVec3;
+use crate::mesh3::VertexKind;
+use crate::metric::Sym3;
+use std::time::Instant;
+
+/// Quality (mean ratio) a conformity collapse or move may go down to when the ball was better.
+pub(crate) const Q_KEEP: f64 = 0.5;
+
+/// Tetrahedra below this quality are repaired after the loop ([`super::improve`]).
+const Q_REPAIR: f64 = 0.55;
+
+/// Most rounds of the loop.
+const ROUNDS: usize = 16;
+
+/// The share of edges with metric length in `[l_min, l_max]` (lengths as the operators see
+/// them, [`Ctx::length`]).
+pub(crate) fn in_range_share(ctx: &Ctx<'_>) -> f64 {
+    let (mut n, mut inr) = (0usize, 0usize);
+    let mut nb = Vec::new();
+    for a in 0..ctx.mesh.points.len() as u32 {
+        if !ctx.mesh.alive(a) {
+            continue;
+        }
+        ctx.mesh.vertex_neighbours(a, &mut nb);
+        for &b in nb.iter().filter(|&&b| b > a) {
+            let l = ctx.length(a, b);
+            n += 1;
+            if (ctx.l_min..=ctx.l_max).contains(&l) {
+                inr += 1;
+            }
+        }
+    }
+    inr as f64 / n.max(1) as f64
+}
+
+/// One pass of conformity collapses (see the module docs); returns the number applied.
+pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
+    ctx.next_pass();
+    let mut short: Vec<(u64, u32, u32)> = Vec::new();
+    let mut nb = Vec::new();
+    for a in 0..ctx.mesh.points.len() as u32 {
+        if !ctx.mesh.alive(a) {
+            continue;
+        }
+        ctx.mesh.vertex_neighbours(a, &mut nb);
+        for &b in nb.iter().filter(|&&b| b > a) {
+            let l = ctx.length(a, b);
+            if l < ctx.l_min {
+                short.push((l.to_bits(), a, b));
+            }
+        }
+    }
+    short.sort_unstable();
+    let mut count = 0;
+    for (_, a, b) in short {
+        if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || ctx.length(a, b) >= ctx.l_min {
+            continue;
+        }
+        let Some(mg) = super::merge::best_merge(ctx, a, b) else {
+            continue;
+        };
+        let floor = ctx.ball_quality(a).min(ctx.ball_quality(b)).min(Q_KEEP);
+        if mg.q >= floor {
+            super::merge::apply(ctx, mg);
+            count += 1;
+        }
+    }
+    count
+}
+
+/// `Σ ln² l` over the edges from a vertex at `p` with metric `m` to its neighbours `nb`, and
+/// how many of them are outside `[l_min, l_max]`.
+fn length_energy(ctx: &Ctx<'_>, p: DVec3, m: &Sym3, nb: &[u32]) -> (f64, usize) {
+    let (mut e, mut out) = (0.0, 0);
+    for &w in nb {
+        let l = Ctx::length_at(p, ctx.mesh.points[w as usize], m, &ctx.metric[w as usize]);
+        let ll = l.max(1e-300).ln();
+        e += ll * ll;
+        if !(ctx.l_min..=ctx.l_max).contains(&l) {
+            out += 1;
+        }
+    }
+    (e, out)
+}
+
+/// One pass of length smoothing over every live vertex (see the module docs); returns the
+/// number of moves.
+pub(crate) fn length_smooth_pass(ctx: &mut Ctx<'_>) -> usize {
+    ctx.next_pass();
+    let Some(f) = ctx.source else {
+        return 0;
+    };
+    let mut nb = Vec::new();
+    let mut count = 0;
+    for v in 0..ctx.mesh.points.len() as u32 {
+        if !ctx.mesh.alive(v) {
+            continue;
+        }
+        let normal = match ctx.mesh.vertex_kind(v) {
+            VertexKind::Interior => None,
+            VertexKind::Face(n) => Some(n),
+            VertexKind::Feature => continue,
+        };
+        ctx.mesh.vertex_neighbours(v, &mut nb);
+        let p = ctx.mesh.points[v as usize];
+        let m0 = ctx.metric[v as usize];
+        let (e0, out0) = length_energy(ctx, p, &m0, &nb);
+        if out0 == 0 && e0 < 0.05 * nb.len() as f64 {
+            continue;
+        }
+        let mut target = DVec3::ZERO;
+        for &w in &nb {
+            let pw = ctx.mesh.points[w as usize];
+            let l = ctx.length(v, w).max(1e-12);
+            target += pw + (p - pw) / l;
+        }
+        let mut d = target / nb.len() as f64 - p;
+        if let Some(n) = normal {
+            d -= n * d.dot(n);
+        }
+        let q0 = ctx.ball_quality(v);
+        let floor = q0.min(Q_KEEP);
+        for step in [1.0, 0.5, 0.25] {
+            let np = p + step * d;
+            let m = f(np);
+            let (e1, out1) = length_energy(ctx, np, &m, &nb);
+            if e1 >= e0 || out1 > out0 {
+                continue;
+            }
+            let q = ctx.mesh.ball[v as usize]
+                .iter()
+                .map(|&t| ctx.quality_of(ctx.mesh.tets[t as usize], Some((v, np, &m))))
+                .fold(f64::INFINITY, f64::min);
+            if q >= floor && ctx.mesh.move_valid(v, np) {
+                ctx.mesh.points[v as usize] = np;
+                ctx.metric[v as usize] = m;
+                ctx.touch_ball(v);
+                count += 1;
+                break;
+            }
+        }
+    }
+    count
+}
+
+/// Records one pass in `rep` and checks the mesh when asked.
+fn record(
+    ctx: &mut Ctx<'_>,
+    kind: PassKind,
+    opts: &AdaptOptions,
+    rep: &mut AdaptReport,
+    pass: impl FnOnce(&mut Ctx<'_>) -> usize,
+) -> Result<usize> {
+    let t = Instant::now();
+    let n = pass(ctx);
+    match kind {
+        PassKind::Split => rep.splits += n,
+        PassKind::Collapse => rep.collapses += n,
+        PassKind::Flip => rep.flips += n,
+        PassKind::Smooth => rep.moves += n,
+    }
+    rep.passes.push(PassReport {
+        kind,
+        count: n,
+        seconds: t.elapsed().as_secs_f64(),
+    });
+    if opts.check_each_pass {
+        ctx.check()?;
+    }
+    Ok(n)
+}
+
+/// The conformity loop (see the module docs), recorded in `rep`.
+pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptReport) -> Result<()> {
+    let mut share = in_range_share(ctx);
+    for _ in 0..ROUNDS {
+        let nc = record(ctx, PassKind::Collapse, opts, rep, collapse_pass)?;
+        let ns = record(ctx, PassKind::Split, opts, rep, super::split::pass)?;
+        record(ctx, PassKind::Flip, opts, rep, super::swap::pass)?;
+        let nm = record(ctx, PassKind::Smooth, opts, rep, length_smooth_pass)?;
+        let s = in_range_share(ctx);
+        if nc + ns + nm == 0 || s <= share + 1e-4 {
+            break;
+        }
+        share = s;
+    }
+    for _ in 0..3 {
+        let n = record(ctx, PassKind::Smooth, opts, rep, |c| {
+            super::improve::pass(c, Q_REPAIR)
+        })?;
+        record(ctx, PassKind::Flip, opts, rep, super::swap::pass)?;
+        if n == 0 {
+            break;
+        }
+    }
+    Ok(())
+}
