@@ -54,6 +54,8 @@ pub trait Dimension: 'static {
     type Function<'a>: ?Sized + Sync + 'a;
     /// The discrete zero level: polylines in 2D, a triangle surface in 3D.
     type ZeroLevel: std::fmt::Debug + Clone;
+    /// The Euclidean length of a vector.
+    fn length(v: Self::Point) -> f64;
 }
 
 /// Two space dimensions: points `DVec2`, implicit functions [`Shape`] (signed distance with
@@ -67,6 +69,9 @@ impl Dimension for D2 {
     type Point = DVec2;
     type Function<'a> = dyn Shape + 'a;
     type ZeroLevel = Vec<Polyline>;
+    fn length(v: DVec2) -> f64 {
+        v.length()
+    }
 }
 
 /// Three space dimensions: points `DVec3`, implicit functions given by their value, zero level
@@ -79,6 +84,9 @@ impl Dimension for D3 {
     type Point = DVec3;
     type Function<'a> = dyn Fn(DVec3) -> f64 + Send + Sync + 'a;
     type ZeroLevel = TriangleSurface;
+    fn length(v: DVec3) -> f64 {
+        v.length()
+    }
 }
 
 /// What a back end is built from: an implicit function, the box it lives in and the resolution
@@ -181,4 +189,40 @@ pub(crate) fn check_dt(dt: f64, what: &str) -> Result<()> {
             "{what}: the time step must be finite and positive (got {dt})"
         )))
     }
+}
+
+/// The number of equal sub-steps of an advection step from `ta` to `tb` that move no point of
+/// `points` by more than `cell` per sub-step, from the largest speed `|v(ta, x)|`, `|v(tb, x)|`
+/// over the points. Errors: [`crate::Error::InvalidField`] for a non-finite velocity (naming the
+/// point), [`crate::Error::InvalidInput`] for more than 10⁹ sub-steps (`what` names the step).
+pub(crate) fn advection_substeps<D: Dimension>(
+    points: &[D::Point],
+    velocity: VelocityField<'_, D>,
+    (ta, tb): (f64, f64),
+    cell: f64,
+    what: &str,
+) -> Result<usize> {
+    use rayon::prelude::*;
+    let vmax = points
+        .par_iter()
+        .map(|&x| {
+            let s = D::length(velocity(ta, x)).max(D::length(velocity(tb, x)));
+            if s.is_finite() {
+                Ok(s)
+            } else {
+                Err(crate::Error::InvalidField {
+                    name: "velocity".into(),
+                    msg: format!("non-finite at {x:?}"),
+                })
+            }
+        })
+        .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
+    let dt = tb - ta;
+    let steps = (vmax * dt / cell).ceil().max(1.0);
+    if steps > 1e9 {
+        return Err(crate::Error::InvalidInput(format!(
+            "{what}: dt = {dt} at speed {vmax} needs {steps} sub-steps"
+        )));
+    }
+    Ok(steps as usize)
 }

@@ -47,6 +47,16 @@ pub struct StepReport {
     pub converged: bool,
 }
 
+impl StepReport {
+    /// The report of a step about to run: converged until a solve or inner loop says otherwise.
+    pub(crate) fn begin() -> StepReport {
+        StepReport {
+            converged: true,
+            ..StepReport::default()
+        }
+    }
+}
+
 /// Curvature samples on the zero level: `values[i]` is `κ = div(∇u/|∇u|)` at `points[i]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CurvatureSamples<D: Dimension> {

@@ -425,13 +425,6 @@ fn blend_with_distance(mesh: &Mesh2, n: &[f64], width: f64) -> Result<Vec<f64>> 
         .collect())
 }
 
-fn new_report() -> StepReport {
-    StepReport {
-        converged: true,
-        ..StepReport::default()
-    }
-}
-
 impl LevelSetBackend<D2> for AdaptedBackend {
     fn name(&self) -> &'static str {
         "adapted"
@@ -452,7 +445,7 @@ impl LevelSetBackend<D2> for AdaptedBackend {
     fn advance_mean_curvature(&mut self, dt: f64) -> Result<StepReport> {
         check_dt(dt, "mean curvature step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let mut cost = mcf::StepCost::default();
         let width = self.opts.band * self.metric.hmin;
         let u = mcf::step(&self.mesh, &self.u, dt, width, &self.opts, &mut cost)?;
@@ -477,7 +470,7 @@ impl LevelSetBackend<D2> for AdaptedBackend {
     fn advect(&mut self, velocity: VelocityField<'_, D2>, dt: f64) -> Result<StepReport> {
         check_dt(dt, "advection step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let area = if self.opts.mass_correction {
             Some(enclosed_area(&self.mesh, &self.u)?)
         } else {
@@ -509,7 +502,7 @@ impl LevelSetBackend<D2> for AdaptedBackend {
 
     fn redistance(&mut self) -> Result<StepReport> {
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         self.u = self.redistanced()?;
         rep.phases.redistance += t0.elapsed().as_secs_f64();
         Ok(self.finish(rep, t0))

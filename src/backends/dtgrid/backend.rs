@@ -27,7 +27,8 @@ use super::mcf::{rebuild, McfOptions, McfState};
 use super::probe::{curvature_at, sample, sample_cubic};
 use super::surface::{signed_distance, zero_level};
 use crate::backends::{
-    check_dt, BuildSpec, CurvatureSamples, LevelSetBackend, StepReport, VelocityField, D3,
+    advection_substeps, check_dt, BuildSpec, CurvatureSamples, LevelSetBackend, StepReport,
+    VelocityField, D3,
 };
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
@@ -75,13 +76,6 @@ pub struct DtGridBackend {
     top: DVec3,
     time: f64,
     opts: DtGridOptions,
-}
-
-fn new_report() -> StepReport {
-    StepReport {
-        converged: true,
-        ..StepReport::default()
-    }
 }
 
 impl DtGridBackend {
@@ -298,7 +292,7 @@ impl LevelSetBackend<D3> for DtGridBackend {
     fn advance_mean_curvature(&mut self, dt: f64) -> Result<StepReport> {
         check_dt(dt, "dtgrid mean curvature step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let h = self.state.lat.h;
         let steps = (dt / (self.opts.tau_per_h2 * h * h) - 1e-9).ceil().max(1.0);
         if steps > 1e9 {
@@ -335,37 +329,24 @@ impl LevelSetBackend<D3> for DtGridBackend {
     fn advect(&mut self, velocity: VelocityField<'_, D3>, dt: f64) -> Result<StepReport> {
         check_dt(dt, "dtgrid advection step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let lat = self.state.lat;
         let shift = self.shift;
         let (ta, tb) = (self.time, self.time + dt);
-        let vmax = self
+        let points: Vec<DVec3> = self
             .state
             .nb
             .band
             .coords()
-            .collect::<Vec<_>>()
-            .par_iter()
-            .map(|&c| {
-                let x = lat.pos(c) + shift;
-                let s = velocity(ta, x).length().max(velocity(tb, x).length());
-                if s.is_finite() {
-                    Ok(s)
-                } else {
-                    Err(Error::InvalidField {
-                        name: "velocity".into(),
-                        msg: format!("non-finite at {x:?}"),
-                    })
-                }
-            })
-            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
-        let steps = (vmax * dt / (self.cfl() * lat.h)).ceil().max(1.0);
-        if steps > 1e9 {
-            return Err(Error::InvalidInput(format!(
-                "dtgrid advection: dt = {dt} at speed {vmax} needs {steps} sub-steps"
-            )));
-        }
-        let steps = steps as usize;
+            .map(|c| lat.pos(c) + shift)
+            .collect();
+        let steps = advection_substeps::<D3>(
+            &points,
+            velocity,
+            (ta, tb),
+            self.cfl() * lat.h,
+            "dtgrid advection",
+        )?;
         let k = dt / steps as f64;
         for s in 0..steps {
             self.advect_substep(velocity, ta + (s + 1) as f64 * k, k)?;
@@ -378,7 +359,7 @@ impl LevelSetBackend<D3> for DtGridBackend {
 
     fn redistance(&mut self) -> Result<StepReport> {
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let (nb, d) = rebuild(&self.state.lat, &self.state.nb, &self.state.phi)?;
         self.state.nb = nb;
         self.state.phi = d;

@@ -304,13 +304,6 @@ impl FittedBackend {
     }
 }
 
-fn new_report() -> StepReport {
-    StepReport {
-        converged: true,
-        ..StepReport::default()
-    }
-}
-
 impl LevelSetBackend<D2> for FittedBackend {
     fn name(&self) -> &'static str {
         "fitted"
@@ -331,7 +324,7 @@ impl LevelSetBackend<D2> for FittedBackend {
     fn advance_mean_curvature(&mut self, dt: f64) -> Result<StepReport> {
         check_dt(dt, "mean curvature step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         // Heun's step with the implicit smoother has a local error `dt² M_L⁻¹K f` (the smoother's
         // bias, an `O(dt)` radius error with dt ∝ h); Richardson extrapolation of one step of
         // dt and two of dt/2 cancels it, and the damping of the stiff modes is kept (module
@@ -357,7 +350,7 @@ impl LevelSetBackend<D2> for FittedBackend {
     fn advect(&mut self, velocity: VelocityField<'_, D2>, dt: f64) -> Result<StepReport> {
         check_dt(dt, "advection step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let (ta, tb) = (self.time, self.time + dt);
         let cell =
             ((self.hi - self.lo).x / self.nx as f64).min((self.hi - self.lo).y / self.ny as f64);
@@ -397,7 +390,7 @@ impl LevelSetBackend<D2> for FittedBackend {
 
     fn redistance(&mut self) -> Result<StepReport> {
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         self.u = self.redistanced()?;
         rep.phases.redistance += t0.elapsed().as_secs_f64();
         Ok(self.finish(rep, t0))

@@ -31,7 +31,8 @@ use crate::backends::dtgrid::band::{Band, GridCoord};
 use crate::backends::dtgrid::mcf::McfOptions;
 use crate::backends::dtgrid::scheme::Bc;
 use crate::backends::{
-    check_dt, BuildSpec, CurvatureSamples, LevelSetBackend, StepReport, VelocityField, D2,
+    advection_substeps, check_dt, BuildSpec, CurvatureSamples, LevelSetBackend, StepReport,
+    VelocityField, D2,
 };
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
@@ -80,13 +81,6 @@ pub struct DtGrid2Backend {
     top: DVec2,
     time: f64,
     opts: DtGrid2Options,
-}
-
-fn new_report() -> StepReport {
-    StepReport {
-        converged: true,
-        ..StepReport::default()
-    }
 }
 
 fn positive(x: f64) -> bool {
@@ -312,7 +306,7 @@ impl LevelSetBackend<D2> for DtGrid2Backend {
     fn advance_mean_curvature(&mut self, dt: f64) -> Result<StepReport> {
         check_dt(dt, "planar band mean curvature step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let h = self.state.plane.h;
         let tau_max = (self.opts.tau_per_h2 * h * h).min(self.opts.tau_per_h * h);
         let steps = (dt / tau_max - 1e-9).ceil().max(1.0);
@@ -349,33 +343,24 @@ impl LevelSetBackend<D2> for DtGrid2Backend {
     fn advect(&mut self, velocity: VelocityField<'_, D2>, dt: f64) -> Result<StepReport> {
         check_dt(dt, "planar band advection step")?;
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let plane = self.state.plane;
         let shift = self.shift;
         let (ta, tb) = (self.time, self.time + dt);
-        let coords: Vec<C2> = self.state.nb.band.coords().collect();
-        let vmax = coords
-            .par_iter()
-            .map(|&c| {
-                let x = plane.pos(c) + shift;
-                let s = velocity(ta, x).length().max(velocity(tb, x).length());
-                if s.is_finite() {
-                    Ok(s)
-                } else {
-                    Err(Error::InvalidField {
-                        name: "velocity".into(),
-                        msg: format!("non-finite at {x:?}"),
-                    })
-                }
-            })
-            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
-        let steps = (vmax * dt / (self.cfl() * plane.h)).ceil().max(1.0);
-        if steps > 1e9 {
-            return Err(Error::InvalidInput(format!(
-                "planar band advection: dt = {dt} at speed {vmax} needs {steps} sub-steps"
-            )));
-        }
-        let steps = steps as usize;
+        let points: Vec<DVec2> = self
+            .state
+            .nb
+            .band
+            .coords()
+            .map(|c| plane.pos(c) + shift)
+            .collect();
+        let steps = advection_substeps::<D2>(
+            &points,
+            velocity,
+            (ta, tb),
+            self.cfl() * plane.h,
+            "planar band advection",
+        )?;
         let k = dt / steps as f64;
         for s in 0..steps {
             self.advect_substep(velocity, ta + (s + 1) as f64 * k, k)?;
@@ -388,7 +373,7 @@ impl LevelSetBackend<D2> for DtGrid2Backend {
 
     fn redistance(&mut self) -> Result<StepReport> {
         let t0 = Instant::now();
-        let mut rep = new_report();
+        let mut rep = StepReport::begin();
         let (nb, d) = rebuild(
             &self.state.plane,
             &self.state.nb,
