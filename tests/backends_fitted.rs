@@ -301,8 +301,9 @@ fn area_radius(b: &FittedBackend) -> f64 {
 }
 
 #[test]
-fn backend_circle_shrinks_by_curvature_at_order_one() {
-    // R(t) = √(R0² − 2t), dt ∝ h², to T = 0.02.
+fn backend_circle_shrinks_by_curvature_at_order_two() {
+    // R(t) = √(R0² − 2t), dt ∝ h², to T = 0.02. The Richardson-extrapolated step and the P1 zero
+    // level are both second order.
     let (r0, t_end) = (0.3f64, 0.02f64);
     let exact = (r0 * r0 - 2.0 * t_end).sqrt();
     let centre = DVec2::new(0.013, -0.021);
@@ -330,9 +331,9 @@ fn backend_circle_shrinks_by_curvature_at_order_one() {
     }
     let order = (errors[0] / errors[1]).log2();
     eprintln!("order {order:.2}");
-    assert!(order >= 1.0, "order {order} (errors {errors:?})");
+    assert!(order >= 1.8, "order {order} (errors {errors:?})");
     assert!(errors[1] < 2e-3, "{errors:?}");
-    // With dt ∝ h the time error dominates: order 1.
+    // With dt ∝ h the extrapolated step is still second order in dt.
     let mut b = circle_backend(centre, r0, 1.0 / 64.0);
     for _ in 0..16 {
         b.advance_mean_curvature(t_end / 16.0).unwrap();
@@ -347,7 +348,7 @@ fn backend_circle_shrinks_by_curvature_at_order_one() {
         "dt ∝ h: errors {e16:.3e}, {e32:.3e}, order {:.2}",
         (e16 / e32).log2()
     );
-    assert!((e16 / e32).log2() >= 0.9, "{e16} {e32}");
+    assert!((e16 / e32).log2() >= 1.6, "{e16} {e32}");
 }
 
 #[test]
