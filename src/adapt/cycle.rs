@@ -4,7 +4,7 @@
 //! smoothing pass, the convergence test; then a few final flip and smoothing sweeps. Spatial
 //! renumbering and metric gradation are interleaved as the mesh grows.
 
-use super::options::{AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport};
+use super::options::{AdaptOptions, AdaptReport, CycleSmoothing, PassKind};
 use crate::error::{Error, Result};
 use std::time::Instant;
 
@@ -43,17 +43,7 @@ fn record<R: Remesher>(
 ) -> Result<usize> {
     let t = Instant::now();
     let n = r.run_pass(kind);
-    match kind {
-        PassKind::Split => rep.splits += n,
-        PassKind::Collapse => rep.collapses += n,
-        PassKind::Flip => rep.flips += n,
-        PassKind::Smooth => rep.moves += n,
-    }
-    rep.passes.push(PassReport {
-        kind,
-        count: n,
-        seconds: t.elapsed().as_secs_f64(),
-    });
+    rep.record_pass(kind, n, t.elapsed().as_secs_f64());
     if opts.check_each_pass {
         r.check()?;
     }

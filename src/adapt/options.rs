@@ -221,6 +221,21 @@ pub struct AdaptReport {
 }
 
 impl AdaptReport {
+    /// Records one pass of `kind` that made `count` changes in `seconds`.
+    pub(crate) fn record_pass(&mut self, kind: PassKind, count: usize, seconds: f64) {
+        match kind {
+            PassKind::Split => self.splits += count,
+            PassKind::Collapse => self.collapses += count,
+            PassKind::Flip => self.flips += count,
+            PassKind::Smooth => self.moves += count,
+        }
+        self.passes.push(PassReport {
+            kind,
+            count,
+            seconds,
+        });
+    }
+
     /// Totals over the passes of one kind: `(number of passes, operations, seconds)`.
     pub fn pass_totals(&self, kind: PassKind) -> (usize, usize, f64) {
         self.passes

@@ -18,7 +18,7 @@
 
 use super::Ctx;
 use crate::adapt::cycle::Remesher;
-use crate::adapt::options::{AdaptOptions, AdaptReport, PassKind, PassReport};
+use crate::adapt::options::{AdaptOptions, AdaptReport, PassKind};
 use crate::error::Result;
 use crate::geom::DVec3;
 use crate::mesh3::VertexKind;
@@ -175,17 +175,7 @@ fn record(
 ) -> Result<usize> {
     let t = Instant::now();
     let n = pass(ctx);
-    match kind {
-        PassKind::Split => rep.splits += n,
-        PassKind::Collapse => rep.collapses += n,
-        PassKind::Flip => rep.flips += n,
-        PassKind::Smooth => rep.moves += n,
-    }
-    rep.passes.push(PassReport {
-        kind,
-        count: n,
-        seconds: t.elapsed().as_secs_f64(),
-    });
+    rep.record_pass(kind, n, t.elapsed().as_secs_f64());
     if opts.check_each_pass {
         ctx.check()?;
     }
