@@ -3,7 +3,9 @@
 //!
 //! Dimension 2: `Vertices` (x y ref), `Triangles` (a b c ref), `Edges` (a b ref, mapped onto
 //! `Mesh2::edge_ref` of the triangle edges), `Corners`, `RequiredVertices`, `End`. Dimension 3:
-//! `Vertices`, `Tetrahedra`, `Triangles` into [`Medit3`]. Indices in files are 1-based. Keywords
+//! `Vertices`, `Tetrahedra`, `Triangles` into [`Medit3`], and `Edges`, `Corners`,
+//! `RequiredVertices` into [`DeclaredFeatures3`] ([`parse_medit3_features`]); written with the
+//! ridges and corners of a [`Features3`] ([`write_medit3_features`]). Indices in files are 1-based. Keywords
 //! are case-insensitive, numbers may be split across lines, `#` starts a comment, and unknown
 //! sections (`Normals`, `Ridges`, `RequiredEdges`, FreeFem++'s `Identifier "..."`,
 //! `VertexOnGeometricEdge`, ...) are skipped.
@@ -14,6 +16,7 @@ use super::validate::{build_mesh, RawEdge, RawMesh2};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::mesh::{Mesh2, NONE};
+use crate::mesh3::{DeclaredFeatures3, Features3};
 use std::io::Write;
 use std::path::Path;
 
@@ -335,6 +338,13 @@ pub fn read_medit2(path: &Path) -> Result<Mesh2> {
 /// Parses a three-dimensional Medit mesh (vertices, tetrahedra, triangles). Indices are checked;
 /// element orientation and conformity are left to the 3D mesh module.
 pub fn parse_medit3(path: &Path, text: &str) -> Result<Medit3> {
+    Ok(parse_medit3_features(path, text)?.0)
+}
+
+/// Parses a three-dimensional Medit mesh as [`parse_medit3`] does, with the features it
+/// declares: its `Edges` (ridges, required or plain: all kept as features), `Corners` and
+/// `RequiredVertices`. Indices are checked.
+pub fn parse_medit3_features(path: &Path, text: &str) -> Result<(Medit3, DeclaredFeatures3)> {
     let d = parse(path, text)?;
     if d.dim != 3 {
         return Err(Error::parse(
@@ -361,7 +371,22 @@ pub fn parse_medit3(path: &Path, text: &str) -> Result<Medit3> {
             return Err(bad(d.tri_line[k], format!("triangle {}", k + 1)));
         }
     }
-    Ok(Medit3 {
+    for (k, e) in d.edges.iter().enumerate() {
+        if e.v.iter().any(|&v| v as usize >= n) {
+            return Err(bad(e.line, format!("edge {}", k + 1)));
+        }
+    }
+    for (list, kw) in [(&d.corners, "Corners"), (&d.required, "RequiredVertices")] {
+        if let Some(k) = list.iter().position(|&(v, _)| v as usize >= n) {
+            return Err(bad(list[k].1, format!("{kw} entry {}", k + 1)));
+        }
+    }
+    let declared = DeclaredFeatures3 {
+        edges: d.edges.iter().map(|e| e.v).collect(),
+        corners: d.corners.iter().map(|&(v, _)| v).collect(),
+        required: d.required.iter().map(|&(v, _)| v).collect(),
+    };
+    let m = Medit3 {
         points: (0..n)
             .map(|v| DVec3::new(d.coords[3 * v], d.coords[3 * v + 1], d.coords[3 * v + 2]))
             .collect(),
@@ -370,12 +395,19 @@ pub fn parse_medit3(path: &Path, text: &str) -> Result<Medit3> {
         tet_ref: d.tet_ref,
         tris: d.tris,
         tri_ref: d.tri_ref,
-    })
+    };
+    Ok((m, declared))
 }
 
 /// Reads a three-dimensional Medit `.mesh` file; see [`parse_medit3`].
 pub fn read_medit3(path: &Path) -> Result<Medit3> {
     parse_medit3(path, &read_text(path)?)
+}
+
+/// Reads a three-dimensional Medit `.mesh` file with its declared features; see
+/// [`parse_medit3_features`].
+pub fn read_medit3_features(path: &Path) -> Result<(Medit3, DeclaredFeatures3)> {
+    parse_medit3_features(path, &read_text(path)?)
 }
 
 /// Writes the Medit text of a 2D mesh: live triangles, every boundary edge and every labelled
@@ -458,6 +490,20 @@ pub fn write_medit2(path: &Path, mesh: &Mesh2) -> Result<()> {
 
 /// Writes a 3D Medit mesh (atomically).
 pub fn write_medit3(path: &Path, m: &Medit3) -> Result<()> {
+    write_medit3_features(path, m, &Features3::default())
+}
+
+/// Writes a 3D Medit mesh (atomically) with the ridges of `f` as `Edges` (label 0), all listed
+/// in `Ridges`, and its corners as `Corners` (sections written only when not empty), as mmg3d
+/// reads them.
+pub fn write_medit3_features(path: &Path, m: &Medit3, f: &Features3) -> Result<()> {
+    let n = m.points.len();
+    if f.ridges.iter().flatten().chain(&f.corners).any(|&v| v as usize >= n) {
+        return Err(Error::InvalidInput(format!(
+            "cannot write '{}': a ridge or corner refers to a vertex beyond the {n} vertices",
+            path.display()
+        )));
+    }
     if m.point_ref.len() != m.points.len()
         || m.tet_ref.len() != m.tets.len()
         || m.tri_ref.len() != m.tris.len()
@@ -495,6 +541,31 @@ pub fn write_medit3(path: &Path, m: &Medit3) -> Result<()> {
             for (t, &r) in m.tris.iter().zip(&m.tri_ref) {
                 let [a, b, c] = t.map(|v| v as i64 + 1);
                 o.ints(&[a, b, c, r as i64]);
+                o.line()?;
+            }
+        }
+        if !f.ridges.is_empty() {
+            o.text("\nEdges\n");
+            o.int(f.ridges.len());
+            o.text("\n");
+            for e in &f.ridges {
+                o.ints(&[e[0] as i64 + 1, e[1] as i64 + 1, 0]);
+                o.line()?;
+            }
+            o.text("\nRidges\n");
+            o.int(f.ridges.len());
+            o.text("\n");
+            for k in 1..=f.ridges.len() {
+                o.int(k);
+                o.line()?;
+            }
+        }
+        if !f.corners.is_empty() {
+            o.text("\nCorners\n");
+            o.int(f.corners.len());
+            o.text("\n");
+            for &v in &f.corners {
+                o.int(v as usize + 1);
                 o.line()?;
             }
         }

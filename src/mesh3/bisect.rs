@@ -75,6 +75,9 @@ impl Mesh3 {
                 .collect();
         }
         self.build_neighbours();
+        if !self.features.ridges.is_empty() {
+            self.split_ridges(&mid);
+        }
         count
     }
 

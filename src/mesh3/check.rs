@@ -12,7 +12,7 @@ impl Mesh3 {
     /// edge of a face that only one tetrahedron has), the bisection data in step with `tets`, and
     /// the face adjacency and labels: `neighbours` symmetric and sharing the face, `NONE` exactly
     /// on unshared faces, label arrays of the right length, an interior face labelled the same
-    /// from both sides.
+    /// from both sides; every ridge an edge of a boundary face, every corner a vertex.
     pub fn check(&self) -> Result<()> {
         let n = self.points.len();
         if let Some(v) = self.points.iter().position(|p| !p.is_finite()) {
@@ -102,7 +102,8 @@ impl Mesh3 {
                 }
             }
         }
-        self.check_topology(&faces)
+        self.check_topology(&faces)?;
+        self.check_features(&faces)
     }
 
     /// The adjacency and label part of [`Mesh3::check`]; `faces` counts the tetrahedra of each

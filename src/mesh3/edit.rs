@@ -5,7 +5,8 @@
 //! that contain it), from which edge shells and face neighbours are found; boundary triangles
 //! are kept by their sorted vertices with their labels. Ridges and corners are derived from the
 //! boundary: a boundary vertex whose boundary triangles all lie in one plane with one label is a
-//! *face* vertex, else it is a *feature* vertex (on a ridge or a corner). The edits
+//! *face* vertex, else it is a *feature* vertex (on a ridge or a corner); so are the vertices on
+//! the ridges and the corners of [`Mesh3::features`], which the edits keep. The edits
 //! (`ops.rs`) keep every invariant that [`EditMesh3::check`] verifies.
 
 use std::collections::{HashMap, HashSet};
@@ -23,7 +24,8 @@ pub enum VertexKind {
     /// On the boundary, all its boundary triangles in the plane of this unit normal with one
     /// label: it may move in that plane.
     Face(DVec3),
-    /// On a ridge or a corner (several planes or labels meet): it does not move.
+    /// On a ridge or a corner (several planes or labels meet, or a ridge or corner of
+    /// [`Mesh3::features`]): it does not move.
     Feature,
 }
 
@@ -42,6 +44,12 @@ pub struct EditMesh3 {
     pub bfaces: HashMap<[u32; 3], i32>,
     /// Whether each vertex lies on the boundary (on a boundary triangle).
     pub on_boundary: Vec<bool>,
+    /// Ridge edges (smaller vertex first), from [`Mesh3::features`].
+    pub ridges: HashSet<[u32; 2]>,
+    /// Per vertex: the number of ridges on it.
+    pub ridge_count: Vec<u8>,
+    /// Per vertex: whether it is a corner (fixed).
+    pub fixed: Vec<bool>,
     /// Removed tetrahedron slots, reused by later edits.
     pub(super) free: Vec<u32>,
     /// A value cached per tetrahedron slot by the caller (the adaptation keeps its quality
@@ -81,9 +89,20 @@ impl EditMesh3 {
             ball: vec![Vec::new(); m.n_points()],
             bfaces: HashMap::new(),
             on_boundary: vec![false; m.n_points()],
+            ridges: m.features.ridges.iter().copied().collect(),
+            ridge_count: vec![0; m.n_points()],
+            fixed: vec![false; m.n_points()],
             free: Vec::new(),
             cache: vec![f64::NAN; m.n_tets()],
         };
+        for r in &e.ridges {
+            for &v in r {
+                e.ridge_count[v as usize] = e.ridge_count[v as usize].saturating_add(1);
+            }
+        }
+        for &v in &m.features.corners {
+            e.fixed[v as usize] = true;
+        }
         for (t, tet) in m.tets.iter().enumerate() {
             for &v in tet {
                 e.ball[v as usize].push(t as u32);
@@ -129,6 +148,16 @@ impl EditMesh3 {
                 }
             }
         }
+        let mut ridges: Vec<[u32; 2]> = self
+            .ridges
+            .iter()
+            .map(|&[a, b]| super::edge_key(map[a as usize], map[b as usize]))
+            .collect();
+        ridges.sort_unstable();
+        m.features.ridges = ridges;
+        m.features.corners = (0..old.len() as u32)
+            .filter(|&v| self.fixed[old[v as usize] as usize])
+            .collect();
         (m, old)
     }
 
@@ -251,6 +280,9 @@ impl EditMesh3 {
 
     /// Where `v` lies relative to the boundary ([`VertexKind`]).
     pub fn vertex_kind(&self, v: u32) -> VertexKind {
+        if self.fixed[v as usize] || self.ridge_count[v as usize] > 0 {
+            return VertexKind::Feature;
+        }
         if !self.on_boundary[v as usize] {
             return VertexKind::Interior;
         }
@@ -311,6 +343,8 @@ impl EditMesh3 {
         self.points.push(p);
         self.ball.push(Vec::new());
         self.on_boundary.push(false);
+        self.ridge_count.push(0);
+        self.fixed.push(false);
         (self.points.len() - 1) as u32
     }
 
@@ -337,6 +371,13 @@ impl EditMesh3 {
         live.sort_by_key(|x| x.0);
         self.points = old.iter().map(|&v| self.points[v as usize]).collect();
         self.on_boundary = old.iter().map(|&v| self.on_boundary[v as usize]).collect();
+        self.ridge_count = old.iter().map(|&v| self.ridge_count[v as usize]).collect();
+        self.fixed = old.iter().map(|&v| self.fixed[v as usize]).collect();
+        self.ridges = self
+            .ridges
+            .iter()
+            .map(|&[a, b]| super::edge_key(map[a as usize], map[b as usize]))
+            .collect();
         self.tets = live.iter().map(|x| x.1).collect();
         self.tet_ref = live.iter().map(|x| x.2).collect();
         self.cache = vec![f64::NAN; self.tets.len()];
@@ -430,6 +471,17 @@ impl EditMesh3 {
                 0,
                 "a vertex's boundary flag differs from its boundary triangles",
             ));
+        }
+        let mut rc = vec![0u8; n];
+        for &[a, b] in &self.ridges {
+            if a as usize >= n || b as usize >= n || !self.is_boundary_edge(a, b) {
+                return Err(bad(0, "a ridge is not an edge of a boundary triangle"));
+            }
+            rc[a as usize] = rc[a as usize].saturating_add(1);
+            rc[b as usize] = rc[b as usize].saturating_add(1);
+        }
+        if rc != self.ridge_count || self.fixed.len() != n {
+            return Err(bad(0, "the ridge counts or corner flags differ from the ridges"));
         }
         let unshared = faces.iter().filter(|(_, &c)| c == 1).count();
         if unshared != self.bfaces.len()

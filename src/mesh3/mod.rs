@@ -11,16 +11,20 @@
 //!   `edit.rs`) and its local edits (`ops.rs`): edge split, edge collapse with the link
 //!   condition and the boundary rules, face 2-3 swap, edge removal n → 2n − 4, vertex move.
 //! - [`hilbert_order`]: vertex order along a Hilbert curve (`hilbert.rs`).
+//! - [`Features3`]: ridges and corners of the boundary, found from labels and angles or read
+//!   from a file, kept by the edits (`features.rs`).
 
 mod bisect;
 mod check;
 pub mod edit;
+mod features;
 mod hilbert;
 mod kuhn;
 mod ops;
 mod topology;
 
 pub use edit::{EditMesh3, VertexKind};
+pub use features::{edge_key, DeclaredFeatures3, Features3, DEFAULT_RIDGE_ANGLE};
 pub use hilbert::hilbert_order;
 pub use ops::MAX_RING;
 
@@ -50,6 +54,9 @@ pub struct Mesh3 {
     pub face_ref: Vec<[i32; 4]>,
     /// Number of bisections from the initial (Kuhn) tetrahedron.
     pub generation: Vec<u8>,
+    /// Ridges and corners of the boundary kept by the adaptation (none unless set, e.g. by
+    /// [`Mesh3::detect_features`]).
+    pub features: Features3,
     maubach: Vec<([u32; 4], u8)>,
 }
 
@@ -146,6 +153,7 @@ impl Mesh3 {
             tet_ref: vec![0; n],
             face_ref: vec![[0; 4]; n],
             generation,
+            features: Features3::default(),
             maubach,
         };
         m.tets = m.maubach.iter().map(|(o, _)| m.oriented(*o)).collect();

@@ -58,6 +58,11 @@ impl EditMesh3 {
             self.add_tet(sub(tet, b), r);
             self.add_tet(sub(tet, a), r);
         }
+        if self.ridges.remove(&super::edge_key(a, b)) {
+            self.ridges.insert(super::edge_key(a, m));
+            self.ridges.insert(super::edge_key(m, b));
+            self.ridge_count[m as usize] = 2;
+        }
         Some(m)
     }
 
@@ -82,8 +87,13 @@ impl EditMesh3 {
     /// valid: `(a, b)` not an edge; a common neighbour of `a` and `b` outside the shell (the
     /// link condition); a new tetrahedron without positive volume; for a boundary `a`, the edge
     /// not on the boundary, a label of `a` missing at `b`, or a boundary triangle that would
-    /// change its plane or degenerate (so faces stay planar, ridges straight, corners kept).
+    /// change its plane or degenerate (so faces stay planar, ridges straight, corners kept); a
+    /// corner `a`; a ridge vertex `a` unless `(a, b)` is one of its two ridges and the ridge is
+    /// straight at `a`.
     pub fn collapse_check(&self, a: u32, b: u32) -> Option<Vec<[u32; 4]>> {
+        if self.fixed[a as usize] || !self.ridge_collapse_ok(a, b) {
+            return None;
+        }
         let mut shell = Vec::new();
         self.shell(a, b, &mut shell);
         if shell.is_empty() {
@@ -151,9 +161,46 @@ impl EditMesh3 {
         true
     }
 
+    /// Whether the ridges allow removing `a` by a collapse onto `b`: `a` on no ridge, or on
+    /// exactly two, one of them `(a, b)`, the other `(a, c)` with `c`, `a`, `b` in line.
+    fn ridge_collapse_ok(&self, a: u32, b: u32) -> bool {
+        if self.ridge_count[a as usize] == 0 {
+            return true;
+        }
+        if self.ridge_count[a as usize] != 2 || !self.ridges.contains(&super::edge_key(a, b)) {
+            return false;
+        }
+        let mut nb = Vec::new();
+        self.vertex_neighbours(a, &mut nb);
+        let Some(c) = nb
+            .into_iter()
+            .find(|&c| c != b && self.ridges.contains(&super::edge_key(a, c)))
+        else {
+            return false;
+        };
+        let p = |v: u32| self.points[v as usize];
+        let (u, w) = (p(b) - p(a), p(a) - p(c));
+        u.cross(w).length() <= 1e-12 * u.length() * w.length() && u.dot(w) > 0.0
+    }
+
     /// Collapses `a` onto `b`; the caller has just validated it with
     /// [`EditMesh3::collapse_check`].
     pub fn collapse_unchecked(&mut self, a: u32, b: u32) {
+        if self.ridge_count[a as usize] > 0 {
+            let mut nb = Vec::new();
+            self.vertex_neighbours(a, &mut nb);
+            for c in nb {
+                if self.ridges.remove(&super::edge_key(a, c)) {
+                    self.ridge_count[c as usize] -= 1;
+                    if c != b {
+                        self.ridges.insert(super::edge_key(b, c));
+                        self.ridge_count[b as usize] += 1;
+                        self.ridge_count[c as usize] += 1;
+                    }
+                }
+            }
+            self.ridge_count[a as usize] = 0;
+        }
         let mut fa = Vec::new();
         if self.on_boundary[a as usize] {
             self.vertex_bfaces(a, &mut fa);

@@ -58,6 +58,12 @@ pub struct AdaptArgs {
     /// Output directory.
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
+    /// A tetrahedral --input: boundary edges whose triangles' normals differ by more than this
+    /// angle (degrees; as mmg3d's -ar) are ridges, kept with the corners by the adaptation
+    /// (besides edges between differently labelled triangles and the file's Edges, Corners,
+    /// RequiredVertices).
+    #[arg(long, default_value_t = anisomesh::mesh3::DEFAULT_RIDGE_ANGLE)]
+    ridge_angle: f64,
     /// Also cut the adapted mesh along the shape's zero level (interface edges labelled 10,
     /// inside 3, outside 2) and write it beside the adapted mesh as `<name>_fitted.mesh`; with
     /// --input/--sol, the zero level of the input's P1 level set.
@@ -91,7 +97,7 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         ..metric3.apply(b)
     };
     let input = match &a.input {
-        Some(p) => Some(read_input_mesh(p)?),
+        Some(p) => Some(read_input_mesh(p, a.ridge_angle)?),
         None => None,
     };
     if let (Some(InputMesh::Tet(mesh)), Some(mesh_path), Some(sol_path)) =

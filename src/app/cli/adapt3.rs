@@ -165,7 +165,7 @@ fn print_and_write(a: &Adapted3, name: &str, source: Option<&str>, out_dir: &Pat
         tri_ref,
     };
     let mesh_path = out_dir.join(format!("{name}.mesh"));
-    io::write_medit3(&mesh_path, &medit)?;
+    io::write_medit3_features(&mesh_path, &medit, &m.features)?;
     let u = a.level_set.clone().unwrap_or_default();
     let q: Vec<f64> = (0..m.n_tets())
         .map(|t| {
@@ -205,6 +205,13 @@ fn print_and_write(a: &Adapted3, name: &str, source: Option<&str>, out_dir: &Pat
             print!("  ({what} volume {e:.10}: error {:+.3e})", v - e);
         }
         println!();
+    }
+    if !m.features.is_empty() {
+        println!(
+            "kept {} ridge edges and {} corners of the input's boundary",
+            m.features.ridges.len(),
+            m.features.corners.len()
+        );
     }
     println!(
         "{:.2} s, {:.0} vertices/s ({} cycles, {} splits, {} collapses, {} swaps, {} moves{})",

@@ -184,12 +184,21 @@ pub enum InputMesh {
 }
 
 /// Reads the mesh of `adapt --input`: a 2D mesh as it is, a 3D one checked by
-/// [`mesh3_from_medit`]. A `Dimension 3` file with triangles and no tetrahedra (a surface mesh)
-/// is refused with its own error.
-pub fn read_input_mesh(path: &Path) -> Result<InputMesh> {
+/// [`mesh3_from_medit`], with the ridges and corners of its boundary found with the ridge angle
+/// `ridge_angle` (degrees) and those the file declares ([`Mesh3::detect_features`]). A
+/// `Dimension 3` file with triangles and no tetrahedra (a surface mesh) is refused with its own
+/// error.
+pub fn read_input_mesh(path: &Path, ridge_angle: f64) -> Result<InputMesh> {
     match io::read_any(path) {
         Ok(AnyFile::Mesh2(m)) => Ok(InputMesh::Tri(Box::new(m))),
-        Ok(AnyFile::Medit3(m)) => Ok(InputMesh::Tet(Box::new(mesh3_from_medit(path, m)?))),
+        Ok(AnyFile::Medit3(_)) => {
+            let (m, declared) = io::read_medit3_features(path)?;
+            let mut mesh = mesh3_from_medit(path, m)?;
+            mesh.features = mesh
+                .detect_features(ridge_angle, &declared)
+                .map_err(|e| Error::InvalidInput(format!("{}: {e}", path.display())))?;
+            Ok(InputMesh::Tet(Box::new(mesh)))
+        }
         Ok(_) => Err(Error::InvalidInput(format!(
             "{}: not a triangle or tetrahedral mesh",
             path.display()
