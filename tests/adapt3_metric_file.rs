@@ -5,7 +5,7 @@
 //! directly from the analytic function ([`run3`]), both rated in the analytic field with lengths
 //! integrated along the edges (as `anisomesh measure --ugawg` rates).
 
-use anisomesh::adapt::{run3, run3_to_field, Run3Options, Target3};
+use anisomesh::adapt::{run3, run3_to_field, MetricField3, Run3Options, Target3};
 use anisomesh::mesh3::Mesh3;
 use anisomesh::metric::{conformity_analytic, Sym3};
 use anisomesh::DVec3;
@@ -14,7 +14,14 @@ use anisomesh::DVec3;
 fn field(p: DVec3) -> Sym3 {
     let (h0, far) = (0.02, 0.25);
     let hz = h0 + 2.0 * (far - h0) * (p.z - 0.5).abs();
-    Sym3::new(1.0 / (far * far), 0.0, 0.0, 1.0 / (far * far), 0.0, 1.0 / (hz * hz))
+    Sym3::new(
+        1.0 / (far * far),
+        0.0,
+        0.0,
+        1.0 / (far * far),
+        0.0,
+        1.0 / (hz * hz),
+    )
 }
 
 #[test]
@@ -43,4 +50,24 @@ fn file_metric_adapts_as_the_analytic_field() {
     );
     let (nf, ne) = (file.mesh.n_points() as f64, exact.mesh.n_points() as f64);
     assert!((nf / ne - 1.0).abs() <= 0.05, "{nf} vs {ne} vertices");
+    // Log-Euclidean interpolation of the same vertex metrics asks for a finer field between
+    // the background's vertices: many more vertices, fewer edges in range in the analytic
+    // field.
+    let vertex_metric: Vec<Sym3> = bg.points.iter().map(|&p| field(p)).collect();
+    let log = MetricField3::new(&bg.points, &bg.tets, &vertex_metric).unwrap();
+    let f = |p: DVec3| log.at(p);
+    let logm = run3(Target3::Metric(&f), Some(&bg), &opts).unwrap();
+    let cl = rate(&logm.mesh);
+    let nl = logm.mesh.n_points() as f64;
+    eprintln!(
+        "in range / worst / vertices: file {:.4} / {:.3} / {nf}, analytic {:.4} / {:.3} / {ne}, \
+         log-Euclidean {:.4} / {:.3} / {nl}",
+        cf.edge_length_in_range,
+        cf.mean_ratio_min,
+        ce.edge_length_in_range,
+        ce.mean_ratio_min,
+        cl.edge_length_in_range,
+        cl.mean_ratio_min
+    );
+    assert!(nl > 1.1 * ne && cl.edge_length_in_range < ce.edge_length_in_range - 0.03);
 }

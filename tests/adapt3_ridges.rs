@@ -66,7 +66,10 @@ fn one_way(a: &[[DVec3; 2]], b: &[[DVec3; 2]]) -> f64 {
     for s in a {
         for k in 0..=8 {
             let p = s[0].lerp(s[1], k as f64 / 8.0);
-            let d = b.iter().map(|&t| seg_dist(p, t)).fold(f64::INFINITY, f64::min);
+            let d = b
+                .iter()
+                .map(|&t| seg_dist(p, t))
+                .fold(f64::INFINITY, f64::min);
             worst = worst.max(d);
         }
     }
@@ -84,7 +87,11 @@ fn ridges_and_corners_of_an_l_block_survive_adaptation() {
         let mut v: Vec<u32> = (0..mesh.n_points() as u32)
             .filter(|&v| on_line(mesh.points[v as usize]))
             .collect();
-        v.sort_by(|a, b| mesh.points[*a as usize].x.total_cmp(&mesh.points[*b as usize].x));
+        v.sort_by(|a, b| {
+            mesh.points[*a as usize]
+                .x
+                .total_cmp(&mesh.points[*b as usize].x)
+        });
         v
     };
     assert_eq!(line.len(), 5);
@@ -106,9 +113,14 @@ fn ridges_and_corners_of_an_l_block_survive_adaptation() {
     let dir = std::env::temp_dir().join(format!("anisomesh_ridges_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("l.mesh");
-    let mut file_features = anisomesh::mesh3::Features3::default();
-    file_features.ridges = declared.edges.iter().map(|e| edge_key(e[0], e[1])).collect();
-    file_features.corners = declared.required.clone();
+    let file_features = anisomesh::mesh3::Features3 {
+        ridges: declared
+            .edges
+            .iter()
+            .map(|e| edge_key(e[0], e[1]))
+            .collect(),
+        corners: declared.required.clone(),
+    };
     write_medit3_features(&path, &medit, &file_features).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let (_, read) = parse_medit3_features(&path, &text).unwrap();
@@ -137,7 +149,14 @@ fn ridges_and_corners_of_an_l_block_survive_adaptation() {
     let metric = |p: DVec3| {
         let d = ((p.x - 0.5).powi(2) + (p.y - 0.5).powi(2)).sqrt();
         let h = 0.03 + 0.4 * d;
-        Sym3::new(1.0 / (h * h), 0.0, 0.0, 1.0 / (h * h), 0.0, 1.0 / 0.15f64.powi(2))
+        Sym3::new(
+            1.0 / (h * h),
+            0.0,
+            0.0,
+            1.0 / (h * h),
+            0.0,
+            1.0 / 0.15f64.powi(2),
+        )
     };
     let mut opts = Run3Options::default();
     opts.adapt.check_each_pass = true;
@@ -158,7 +177,10 @@ fn ridges_and_corners_of_an_l_block_survive_adaptation() {
         out.features.segments(&out.points),
     );
     let (d1, d2) = (one_way(&rin, &rout), one_way(&rout, &rin));
-    assert!(d1 < 1e-12 && d2 < 1e-12, "ridge Hausdorff {d1:.2e} / {d2:.2e}");
+    assert!(
+        d1 < 1e-12 && d2 < 1e-12,
+        "ridge Hausdorff {d1:.2e} / {d2:.2e}"
+    );
     let corners_out: Vec<DVec3> = out
         .features
         .corners

@@ -401,13 +401,9 @@ mod tests {
             .collect();
         for (f, name) in fields {
             let vm: Vec<Sym3> = m.points.iter().map(|&p| f(p)).collect();
-            let lin = MetricField3::with_rule(
-                &m.points,
-                &m.tets,
-                &vm,
-                FieldInterpolation3::LinearSizes,
-            )
-            .unwrap();
+            let lin =
+                MetricField3::with_rule(&m.points, &m.tets, &vm, FieldInterpolation3::LinearSizes)
+                    .unwrap();
             let log = MetricField3::new(&m.points, &m.tets, &vm).unwrap();
             let (mut worst_lin, mut worst_log) = (0.0f64, 0.0f64);
             for &p in &pts {
@@ -416,8 +412,14 @@ mod tests {
                 worst_lin = worst_lin.max(rel(lin.at(p)));
                 worst_log = worst_log.max(rel(log.at(p)));
             }
-            assert!(worst_lin < 1e-9, "{name}: linear sizes off by {worst_lin:.2e}");
-            assert!(worst_log > 1e-2, "{name}: log-Euclidean off by {worst_log:.2e}");
+            assert!(
+                worst_lin < 1e-9,
+                "{name}: linear sizes off by {worst_lin:.2e}"
+            );
+            assert!(
+                worst_log > 1e-2,
+                "{name}: log-Euclidean off by {worst_log:.2e}"
+            );
         }
         // Rotating frames: SPD, sizes within the vertices' extremes.
         let spin = |p: DVec3| {
@@ -440,7 +442,10 @@ mod tests {
             let (l, _) = x.eigen();
             for li in l {
                 let h = 1.0 / li.sqrt();
-                assert!(h >= hmin * (1.0 - 1e-9) && h <= hmax * (1.0 + 1e-9), "{p}: {h}");
+                assert!(
+                    h >= hmin * (1.0 - 1e-9) && h <= hmax * (1.0 + 1e-9),
+                    "{p}: {h}"
+                );
             }
         }
     }

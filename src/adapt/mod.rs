@@ -58,8 +58,8 @@ pub use driver::{
     adapt, validate_inputs, AdaptOptions, AdaptReport, CycleSmoothing, PassKind, PassReport,
 };
 pub use files3::{
-    run3_graded, run3_to_field, shape_metric3, DiscreteLevelSet3, FieldInterpolation3, MetricField3,
-    GRADED_ROUNDS,
+    run3_graded, run3_to_field, shape_metric3, DiscreteLevelSet3, FieldInterpolation3,
+    MetricField3, GRADED_ROUNDS,
 };
 pub use params::MetricInterpolation;
 pub use report::{mesh_report, MeshReport};

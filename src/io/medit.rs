@@ -498,7 +498,12 @@ pub fn write_medit3(path: &Path, m: &Medit3) -> Result<()> {
 /// reads them.
 pub fn write_medit3_features(path: &Path, m: &Medit3, f: &Features3) -> Result<()> {
     let n = m.points.len();
-    if f.ridges.iter().flatten().chain(&f.corners).any(|&v| v as usize >= n) {
+    if f.ridges
+        .iter()
+        .flatten()
+        .chain(&f.corners)
+        .any(|&v| v as usize >= n)
+    {
         return Err(Error::InvalidInput(format!(
             "cannot write '{}': a ridge or corner refers to a vertex beyond the {n} vertices",
             path.display()

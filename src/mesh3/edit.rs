@@ -481,7 +481,10 @@ impl EditMesh3 {
             rc[b as usize] = rc[b as usize].saturating_add(1);
         }
         if rc != self.ridge_count || self.fixed.len() != n {
-            return Err(bad(0, "the ridge counts or corner flags differ from the ridges"));
+            return Err(bad(
+                0,
+                "the ridge counts or corner flags differ from the ridges",
+            ));
         }
         let unshared = faces.iter().filter(|(_, &c)| c == 1).count();
         if unshared != self.bfaces.len()
