@@ -163,6 +163,14 @@ fn ridges_and_corners_of_an_l_block_survive_adaptation() {
     let a = run3(Target3::Metric(&metric), Some(&start), &opts).unwrap();
     let out = &a.mesh;
     out.check().unwrap();
+    eprintln!(
+        "L-block: {} -> {} vertices, {} -> {} ridge edges, {} corners",
+        start.n_points(),
+        out.n_points(),
+        start.features.ridges.len(),
+        out.features.ridges.len(),
+        out.features.corners.len()
+    );
     assert!(out.n_points() > 4 * start.n_points(), "{}", out.n_points());
     assert!(
         out.features.ridges.len() > start.features.ridges.len(),

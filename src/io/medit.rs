@@ -335,6 +335,9 @@ pub fn read_medit2(path: &Path) -> Result<Mesh2> {
     parse_mesh2(path, &read_text(path)?)
 }
 
+/// The start of [`parse_medit3`]'s refusal of a file of another dimension.
+pub(crate) const NOT_3D: &str = "expected a Dimension 3 mesh";
+
 /// Parses a three-dimensional Medit mesh (vertices, tetrahedra, triangles). Indices are checked;
 /// element orientation and conformity are left to the 3D mesh module.
 pub fn parse_medit3(path: &Path, text: &str) -> Result<Medit3> {
@@ -350,7 +353,7 @@ pub fn parse_medit3_features(path: &Path, text: &str) -> Result<(Medit3, Declare
         return Err(Error::parse(
             path,
             d.point_line.first().copied().unwrap_or(d.last_line),
-            format!("expected a Dimension 3 mesh, found Dimension {}", d.dim),
+            format!("{NOT_3D}, found Dimension {}", d.dim),
         ));
     }
     let n = d.point_ref.len();

@@ -150,6 +150,10 @@ pub fn read_any(path: &Path) -> Result<AnyFile> {
                 Ok(m) => Ok(AnyFile::Mesh2(m)),
                 Err(e2) => match parse_medit3(path, &text) {
                     Ok(m3) if !m3.tets.is_empty() => Ok(AnyFile::Medit3(m3)),
+                    // A 3D file's own defect rather than the 2D reader's refusal of it.
+                    Err(Error::Parse { path, line, msg }) if !msg.starts_with(medit::NOT_3D) => {
+                        Err(Error::Parse { path, line, msg })
+                    }
                     _ => Err(e2),
                 },
             }
