@@ -9,7 +9,8 @@
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
 use anisomesh::backends::fitted::{
-    fit, stefan_step, FitOptions, StefanFlux, StefanOptions, StefanState, VelocityExtension,
+    fit, stefan_step, FitOptions, StefanCurvature, StefanFlux, StefanOptions, StefanState,
+    VelocityExtension,
 };
 use anisomesh::backends::fitted::{Anisotropy, Coefficient};
 use anisomesh::error::{Error, Result};
@@ -57,6 +58,10 @@ pub struct Case {
     pub extension: VelocityExtension,
     /// One-sided gradients of the Stefan condition.
     pub flux: StefanFlux,
+    /// Curvature of the Gibbs–Thomson relation.
+    pub curvature: StefanCurvature,
+    /// Keep the level set at the ends of the cut edges when redistancing.
+    pub keep_interface: bool,
     /// Number of snapshot intervals.
     pub snapshots: usize,
 }
@@ -108,6 +113,10 @@ pub struct PaperReport {
     pub extension: String,
     /// The one-sided gradients of the Stefan condition.
     pub flux: String,
+    /// The curvature of the Gibbs–Thomson relation.
+    pub curvature: String,
+    /// Whether redistancing kept the level set at the ends of the cut edges.
+    pub keep_interface: bool,
     /// Wall time of the loop, seconds.
     pub seconds: f64,
     /// Snapshots at t = 0 and at equal intervals.
@@ -225,6 +234,8 @@ pub fn run(c: &Case) -> Result<PaperReport> {
     let mut opts = StefanOptions::new(dt, h);
     opts.extension = c.extension;
     opts.flux = c.flux;
+    opts.curvature = c.curvature;
+    opts.keep_interface = c.keep_interface;
     opts.eps_c = c.eps_c;
     opts.eps_v = c.eps_v;
     let steps = (t_end / dt).round().max(1.0) as usize;
@@ -247,6 +258,8 @@ pub fn run(c: &Case) -> Result<PaperReport> {
         eps_v: describe(&c.eps_v),
         extension: format!("{:?}", c.extension),
         flux: format!("{:?}", c.flux),
+        curvature: format!("{:?}", c.curvature),
+        keep_interface: c.keep_interface,
         seconds: start.elapsed().as_secs_f64(),
         snapshots: snaps,
     })
