@@ -53,10 +53,15 @@ pub struct StefanArgs {
     /// (001 (5.2) at the base vertices interpolated onto the interface, as 001 §6).
     #[arg(long, default_value = "fit", value_parser = ["fit", "averaging"])]
     curvature: String,
-    /// Redistance only the vertices off the cut edges, keeping the moved level set at the ends of
-    /// the cut edges (pentagon, star), so that redistancing does not move the interface.
-    #[arg(long)]
-    keep_interface: bool,
+    /// Redistancing after each step (pentagon, star): keep (the moved level set kept at the ends
+    /// of the cut edges, only the other vertices redistanced, so the interface does not move; the
+    /// default) or all (every vertex, which shrinks convex parts by O(h² κ) per step, a
+    /// numerical surface tension).
+    #[arg(long, default_value = "keep", value_parser = ["keep", "all"])]
+    redistance: String,
+    /// With --redistance keep: every M-th step redistances every vertex (0: never).
+    #[arg(long, default_value_t = 0)]
+    full_redistance_every: usize,
     /// Output directory (stefan.json, stefan.csv, figures).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -197,13 +202,22 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         extension: ext,
         flux: flux(a),
         curvature,
-        keep_interface: a.keep_interface,
+        keep_interface: a.redistance == "keep",
+        full_redistance_every: a.full_redistance_every,
         snapshots: if star { 4 } else { 8 },
     };
     let rep = paper::run(&case)?;
     println!(
-        "{} seed, {n} x {n} cells, dt = {dt}, {} steps, eps_C = {}, eps_V = {}, extension {}, flux {}, curvature {}",
-        a.case, rep.steps, rep.eps_c, rep.eps_v, rep.extension, rep.flux, rep.curvature
+        "{} seed, {n} x {n} cells, dt = {dt}, {} steps, eps_C = {}, eps_V = {}, extension {}, \
+         flux {}, curvature {}, redistance {}",
+        a.case,
+        rep.steps,
+        rep.eps_c,
+        rep.eps_v,
+        rep.extension,
+        rep.flux,
+        rep.curvature,
+        a.redistance
     );
     println!(
         "{:>7} {:>6} {:>10} {:>8} {:>8} {:>8} {:>8} {:>6} {:>4}",

@@ -181,8 +181,8 @@ pub(crate) fn vertex_normals(fm: &FittedMesh, on: &[bool]) -> Vec<DVec2> {
 }
 
 /// Curvature of the fitted interface itself, for every vertex of `fm.mesh` on it (0 at the
-/// other vertices): at an interface vertex `p₀` with outward normal `n` ([`vertex_normals`]) and
-/// tangent `t`, the interface vertices reachable from `p₀` along the interface polyline within
+/// other vertices): at an interface vertex `p₀` with outward normal `n` (the area-weighted
+/// mean of the P1 gradients of `fm.u` around it) and tangent `t`, the interface vertices reachable from `p₀` along the interface polyline within
 /// the arc length `half_width` are written as `(x, y) = ((p − p₀)·t, (p − p₀)·n)`, the
 /// parabola `y = a + b x + c x²` is fitted to them by least squares (weights `1 − s/half_width`
 /// by arc length `s`, `p₀` weight 1) and `κ = −2c / (1 + b²)^{3/2}` (positive where the
@@ -275,7 +275,7 @@ fn solve3(a: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
     };
     let d = det(&a);
     let scale = a[0][0] * a[1][1] * a[2][2];
-    if !(d.abs() > 1e-12 * scale.abs()) {
+    if d.is_nan() || d.abs() <= 1e-12 * scale.abs() {
         return None;
     }
     let mut out = [0.0; 3];

@@ -62,6 +62,8 @@ pub struct Case {
     pub curvature: StefanCurvature,
     /// Keep the level set at the ends of the cut edges when redistancing.
     pub keep_interface: bool,
+    /// With `keep_interface`: every this many steps every vertex is redistanced (0: never).
+    pub full_redistance_every: usize,
     /// Number of snapshot intervals.
     pub snapshots: usize,
 }
@@ -117,6 +119,8 @@ pub struct PaperReport {
     pub curvature: String,
     /// Whether redistancing kept the level set at the ends of the cut edges.
     pub keep_interface: bool,
+    /// With `keep_interface`: every this many steps every vertex was redistanced (0: never).
+    pub full_redistance_every: usize,
     /// Wall time of the loop, seconds.
     pub seconds: f64,
     /// Snapshots at t = 0 and at equal intervals.
@@ -243,6 +247,8 @@ pub fn run(c: &Case) -> Result<PaperReport> {
     let start = Instant::now();
     let mut snaps = vec![snapshot(&base, &st, 0, None)?];
     for k in 1..=steps {
+        opts.keep_interface =
+            c.keep_interface && !(c.full_redistance_every > 0 && k % c.full_redistance_every == 0);
         let rep = stefan_step(&base, &mut st, &opts)?;
         if k % every == 0 || k == steps {
             snaps.push(snapshot(&base, &st, k, Some(&rep))?);
@@ -260,6 +266,7 @@ pub fn run(c: &Case) -> Result<PaperReport> {
         flux: format!("{:?}", c.flux),
         curvature: format!("{:?}", c.curvature),
         keep_interface: c.keep_interface,
+        full_redistance_every: c.full_redistance_every,
         seconds: start.elapsed().as_secs_f64(),
         snapshots: snaps,
     })
