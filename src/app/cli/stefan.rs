@@ -1,7 +1,9 @@
 //! `anisomesh stefan`: the Stefan problem on the interface-fitted mesh (001 §6).
 
 use crate::app::repro::stefan::{frank, paper};
-use anisomesh::backends::fitted::{Anisotropy, Coefficient, StefanFlux, VelocityExtension};
+use anisomesh::backends::fitted::{
+    Anisotropy, Coefficient, StefanCurvature, StefanFlux, VelocityExtension,
+};
 use anisomesh::error::{Error, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -46,6 +48,20 @@ pub struct StefanArgs {
     /// p1 (area-weighted mean of the P1 gradients, first order; the default for pentagon, star).
     #[arg(long, value_parser = ["p1", "quadratic"])]
     flux: Option<String>,
+    /// Curvature of the Gibbs–Thomson relation (pentagon, star): fit (least-squares parabola
+    /// through the interface vertices within 3h along the interface, the default) or averaging
+    /// (001 (5.2) at the base vertices interpolated onto the interface, as 001 §6).
+    #[arg(long, default_value = "fit", value_parser = ["fit", "averaging"])]
+    curvature: String,
+    /// Redistancing after each step (pentagon, star): keep (the moved level set kept at the ends
+    /// of the cut edges, only the other vertices redistanced, so the interface does not move; the
+    /// default) or all (every vertex, which shrinks convex parts by O(h² κ) per step, a
+    /// numerical surface tension).
+    #[arg(long, default_value = "keep", value_parser = ["keep", "all"])]
+    redistance: String,
+    /// With --redistance keep: every M-th step redistances every vertex (0: never).
+    #[arg(long, default_value_t = 0)]
+    full_redistance_every: usize,
     /// Output directory (stefan.json, stefan.csv, figures).
     #[arg(short, long, default_value = "out")]
     output: PathBuf,
@@ -167,7 +183,15 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         }
     };
     let eps_c = coef(a.eps_c.unwrap_or(default_eps), "eps-c")?;
-    let ext = extension(a, if star { 2.0 } else { 3.0 } / n.max(1) as f64);
+    let h = if star { 2.0 } else { 3.0 } / n.max(1) as f64;
+    let ext = extension(a, h);
+    let curvature = if a.curvature == "averaging" {
+        StefanCurvature::LocalAveraging
+    } else {
+        StefanCurvature::InterfaceFit {
+            half_width: 3.0 * h,
+        }
+    };
     let case = paper::Case {
         seed,
         n,
@@ -177,12 +201,23 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         eps_v: coef(a.eps_v.unwrap_or(default_eps), "eps-v")?,
         extension: ext,
         flux: flux(a),
+        curvature,
+        keep_interface: a.redistance == "keep",
+        full_redistance_every: a.full_redistance_every,
         snapshots: if star { 4 } else { 8 },
     };
     let rep = paper::run(&case)?;
     println!(
-        "{} seed, {n} x {n} cells, dt = {dt}, {} steps, eps_C = {}, eps_V = {}, extension {}, flux {}",
-        a.case, rep.steps, rep.eps_c, rep.eps_v, rep.extension, rep.flux
+        "{} seed, {n} x {n} cells, dt = {dt}, {} steps, eps_C = {}, eps_V = {}, extension {}, \
+         flux {}, curvature {}, redistance {}",
+        a.case,
+        rep.steps,
+        rep.eps_c,
+        rep.eps_v,
+        rep.extension,
+        rep.flux,
+        rep.curvature,
+        a.redistance
     );
     println!(
         "{:>7} {:>6} {:>10} {:>8} {:>8} {:>8} {:>8} {:>6} {:>4}",

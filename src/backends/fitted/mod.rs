@@ -20,7 +20,9 @@ mod stefan;
 mod stefan_flux;
 
 pub use backend::{FittedBackend, FittedOptions, FittedRedistancing};
-pub use curvature::{interface_curvature, vertex_curvature, VertexCurvature};
+pub use curvature::{
+    interface_curvature, interface_fit_curvature, vertex_curvature, VertexCurvature,
+};
 pub use extension::{
     extend_velocity, normal_derivative_jumps, Extension, ExtensionKind, ExtensionOptions,
 };
@@ -29,7 +31,7 @@ pub use fit::{
 };
 pub use reinit::{poisson_reinit, PoissonOutput, PoissonReinit};
 pub use stefan::{
-    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanFlux, StefanOptions, StefanState,
-    StefanStepReport, VelocityExtension,
+    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanCurvature, StefanFlux,
+    StefanOptions, StefanState, StefanStepReport, VelocityExtension,
 };
 pub use stefan_flux::stefan_velocity_quadratic;

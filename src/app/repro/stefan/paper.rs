@@ -9,7 +9,8 @@
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
 use anisomesh::backends::fitted::{
-    fit, stefan_step, FitOptions, StefanFlux, StefanOptions, StefanState, VelocityExtension,
+    fit, stefan_step, FitOptions, StefanCurvature, StefanFlux, StefanOptions, StefanState,
+    VelocityExtension,
 };
 use anisomesh::backends::fitted::{Anisotropy, Coefficient};
 use anisomesh::error::{Error, Result};
@@ -57,6 +58,12 @@ pub struct Case {
     pub extension: VelocityExtension,
     /// One-sided gradients of the Stefan condition.
     pub flux: StefanFlux,
+    /// Curvature of the Gibbs–Thomson relation.
+    pub curvature: StefanCurvature,
+    /// Keep the level set at the ends of the cut edges when redistancing.
+    pub keep_interface: bool,
+    /// With `keep_interface`: every this many steps every vertex is redistanced (0: never).
+    pub full_redistance_every: usize,
     /// Number of snapshot intervals.
     pub snapshots: usize,
 }
@@ -108,6 +115,12 @@ pub struct PaperReport {
     pub extension: String,
     /// The one-sided gradients of the Stefan condition.
     pub flux: String,
+    /// The curvature of the Gibbs–Thomson relation.
+    pub curvature: String,
+    /// Whether redistancing kept the level set at the ends of the cut edges.
+    pub keep_interface: bool,
+    /// With `keep_interface`: every this many steps every vertex was redistanced (0: never).
+    pub full_redistance_every: usize,
     /// Wall time of the loop, seconds.
     pub seconds: f64,
     /// Snapshots at t = 0 and at equal intervals.
@@ -225,6 +238,8 @@ pub fn run(c: &Case) -> Result<PaperReport> {
     let mut opts = StefanOptions::new(dt, h);
     opts.extension = c.extension;
     opts.flux = c.flux;
+    opts.curvature = c.curvature;
+    opts.keep_interface = c.keep_interface;
     opts.eps_c = c.eps_c;
     opts.eps_v = c.eps_v;
     let steps = (t_end / dt).round().max(1.0) as usize;
@@ -232,6 +247,8 @@ pub fn run(c: &Case) -> Result<PaperReport> {
     let start = Instant::now();
     let mut snaps = vec![snapshot(&base, &st, 0, None)?];
     for k in 1..=steps {
+        opts.keep_interface =
+            c.keep_interface && !(c.full_redistance_every > 0 && k % c.full_redistance_every == 0);
         let rep = stefan_step(&base, &mut st, &opts)?;
         if k % every == 0 || k == steps {
             snaps.push(snapshot(&base, &st, k, Some(&rep))?);
@@ -247,6 +264,9 @@ pub fn run(c: &Case) -> Result<PaperReport> {
         eps_v: describe(&c.eps_v),
         extension: format!("{:?}", c.extension),
         flux: format!("{:?}", c.flux),
+        curvature: format!("{:?}", c.curvature),
+        keep_interface: c.keep_interface,
+        full_redistance_every: c.full_redistance_every,
         seconds: start.elapsed().as_secs_f64(),
         snapshots: snaps,
     })
