@@ -116,13 +116,10 @@ impl DtGrid2Backend {
                 opts.tau_per_h2, opts.tau_per_h, opts.cfl, opts.mcf.eps
             )));
         }
-        if opts.mcf.bc == Bc::Transparent || opts.mcf.inner == 0 {
-            return Err(Error::InvalidInput(format!(
-                "planar band: {} conditions with {} solves per step (dirichlet or natural, at \
-                 least one solve)",
-                opts.mcf.bc.name(),
-                opts.mcf.inner
-            )));
+        if opts.mcf.inner == 0 {
+            return Err(Error::InvalidInput(
+                "planar band: at least one solve per mean curvature step".into(),
+            ));
         }
         let side = ext.max_element();
         let cells = (side / res - 1e-9).ceil().max(1.0);

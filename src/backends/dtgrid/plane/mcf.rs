@@ -13,10 +13,11 @@
 //! [`StepReport`]); the linear systems are [`crate::backends::dtgrid::scheme`]'s.
 
 use super::distance::{extend_distance, Keep};
-use super::fem::{assemble, elements};
+use super::fem::{assemble, elements, transparent_vector};
 use super::lattice::{band_around, crossing_cells_of_band, crossing_cells_of_fn, Plane};
 use super::Grid2;
 use crate::backends::dtgrid::band::Band;
+use crate::backends::dtgrid::fem::Weight;
 use crate::backends::dtgrid::lattice::NarrowBand;
 use crate::backends::dtgrid::mcf::{McfOptions, StepReport};
 use crate::backends::dtgrid::scheme::{solve_all, solve_dirichlet, system_matrix, Bc};
@@ -88,12 +89,10 @@ impl PlaneMcf {
     /// conditions (not available in the plane), or a band that leaves the grid;
     /// [`Error::EmptyLevelSet`] when the zero level vanishes; solver errors.
     pub fn step(&mut self, tau: f64, o: &McfOptions) -> Result<StepReport> {
-        if !(tau.is_finite() && tau > 0.0) || o.inner == 0 || o.bc == Bc::Transparent {
+        if !(tau.is_finite() && tau > 0.0) || o.inner == 0 {
             return Err(Error::InvalidInput(format!(
-                "planar mean curvature step: tau = {tau}, solves per step = {}, conditions {} \
-                 (tau and solves positive; dirichlet or natural)",
+                "planar mean curvature step: tau = {tau}, solves per step = {} (both positive)",
                 o.inner,
-                o.bc.name()
             )));
         }
         let plane = self.plane;
@@ -105,17 +104,25 @@ impl PlaneMcf {
         for m in 1..=solves {
             let t = Instant::now();
             let n = nb.band.len();
-            let mats = assemble(&plane, &elements(&nb), n, &phik, o.eps)?;
+            let w = Weight::Mcf { eps: o.eps };
+            let el = elements(&nb);
+            let mats = assemble(&plane, &el, n, &phik, w)?;
             let a = system_matrix(&mats, tau)?;
-            let b: Vec<f64> = mats.mass.iter().zip(&phik).map(|(m, p)| m * p).collect();
+            let mut b: Vec<f64> = mats.mass.iter().zip(&phik).map(|(m, p)| m * p).collect();
             rep.times.assembly += t.elapsed().as_secs_f64();
             let t = Instant::now();
             let mut x = approx.clone();
-            rep.cg_iterations += if o.bc == Bc::Dirichlet {
-                let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
-                solve_dirichlet(&a, &b, &fixed, &mut x)?
-            } else {
-                solve_all(&a, &b, &mut x)?
+            rep.cg_iterations += match o.bc {
+                Bc::Dirichlet => {
+                    let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
+                    solve_dirichlet(&a, &b, &fixed, &mut x)?
+                }
+                Bc::Natural => solve_all(&a, &b, &mut x)?,
+                Bc::Transparent => {
+                    let g = transparent_vector(&plane, &el, n, &phik, &approx, w);
+                    b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
+                    solve_all(&a, &b, &mut x)?
+                }
             };
             rep.solves += 1;
             rep.times.solve += t.elapsed().as_secs_f64();
