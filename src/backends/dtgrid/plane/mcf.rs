@@ -1,6 +1,7 @@
 //! Mean curvature motion of a planar level set on a narrow band (000 §2.2–§2.4 in two
 //! dimensions): each step solves `(M[Φ^k] + τ L[Φ^k]) Φ^{k+1} = M[Φ^k] Φ^k` (000 (2.5)) on the
-//! band, with Dirichlet values on its boundary layer (000 (2.12)) or natural conditions. With
+//! band, with Dirichlet values on its boundary layer (000 (2.12)), natural conditions, or
+//! transparent ones (000 (2.11): the boundary flux of `Φ_approx = Φ^k` added, one solve). With
 //! more than one solve per step (Dirichlet only) this is the nested inner iteration of 000 §2.4:
 //! after each solve the band is rebuilt around the new zero level and the new iterate replaced
 //! by its signed distance there ([`super::distance`]; the corners of the cut cells keep the
@@ -84,9 +85,9 @@ impl PlaneMcf {
         Ok(PlaneMcf { plane, nb, phi })
     }
 
-    /// One time step of length `tau` under `o` (Dirichlet or natural conditions).
-    /// Errors: [`Error::InvalidInput`] for a bad `tau`, no solve per step or transparent
-    /// conditions (not available in the plane), or a band that leaves the grid;
+    /// One time step of length `tau` under `o` (Dirichlet, natural or transparent conditions).
+    /// Errors: [`Error::InvalidInput`] for a bad `tau`, no solve per step, or a band that leaves
+    /// the grid;
     /// [`Error::EmptyLevelSet`] when the zero level vanishes; solver errors.
     pub fn step(&mut self, tau: f64, o: &McfOptions) -> Result<StepReport> {
         if !(tau.is_finite() && tau > 0.0) || o.inner == 0 {
