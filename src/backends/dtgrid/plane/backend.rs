@@ -7,8 +7,8 @@
 //!   the signed distance to the bicubic zero level of the function's nodal values
 //!   ([`super::mcf::PlaneMcf::new`]), so a function that is not a distance becomes one.
 //! - **Mean curvature**: sub-steps of at most `min(tau_per_h2 · h², tau_per_h · h)` of
-//!   000 (2.5) with Dirichlet conditions and the nested inner iteration of 000 §2.4
-//!   ([`super::mcf::PlaneMcf::step`]).
+//!   000 (2.5) with Dirichlet conditions and the nested inner iteration of 000 §2.4 (by
+//!   default), natural or transparent conditions ([`super::mcf::PlaneMcf::step`]).
 //! - **Advection**: semi-Lagrangian sub-steps moving the zero level at most `cfl ≤ j` cells:
 //!   the band dilated by that many cells takes `u(t, X)` at the foot `X` of its characteristic
 //!   (classical Runge–Kutta backwards in time; bicubic Catmull–Rom interpolation in the old
@@ -43,8 +43,8 @@ use std::time::Instant;
 /// The options of the planar DT-Grid back end.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DtGrid2Options {
-    /// The mean curvature scheme: band half-width `j`, boundary condition (Dirichlet or
-    /// natural), solves per step.
+    /// The mean curvature scheme: band half-width `j`, boundary condition (Dirichlet,
+    /// natural or transparent), solves per step.
     pub mcf: McfOptions,
     /// The longest mean curvature sub-step in units of `h²`.
     pub tau_per_h2: f64,
@@ -89,8 +89,8 @@ fn positive(x: f64) -> bool {
 
 impl DtGrid2Backend {
     /// Builds the band from `spec` with options `opts`.
-    /// Errors: [`Error::InvalidInput`] for a bad domain, resolution or options (transparent
-    /// conditions are not available in the plane), a band wider than the grid, or a zero level
+    /// Errors: [`Error::InvalidInput`] for a bad domain, resolution or options (no solve per
+    /// step), a band wider than the grid, or a zero level
     /// whose band does not fit in the domain; [`Error::InvalidField`] for a NaN of the function
     /// at a grid node; [`Error::EmptyLevelSet`] when no grid cell is crossed by the zero level.
     pub fn new(spec: &BuildSpec<'_, D2>, opts: DtGrid2Options) -> Result<DtGrid2Backend> {
@@ -116,13 +116,10 @@ impl DtGrid2Backend {
                 opts.tau_per_h2, opts.tau_per_h, opts.cfl, opts.mcf.eps
             )));
         }
-        if opts.mcf.bc == Bc::Transparent || opts.mcf.inner == 0 {
-            return Err(Error::InvalidInput(format!(
-                "planar band: {} conditions with {} solves per step (dirichlet or natural, at \
-                 least one solve)",
-                opts.mcf.bc.name(),
-                opts.mcf.inner
-            )));
+        if opts.mcf.inner == 0 {
+            return Err(Error::InvalidInput(
+                "planar band: at least one solve per mean curvature step".into(),
+            ));
         }
         let side = ext.max_element();
         let cells = (side / res - 1e-9).ceil().max(1.0);

@@ -1,6 +1,7 @@
 //! Mean curvature motion of a planar level set on a narrow band (000 §2.2–§2.4 in two
 //! dimensions): each step solves `(M[Φ^k] + τ L[Φ^k]) Φ^{k+1} = M[Φ^k] Φ^k` (000 (2.5)) on the
-//! band, with Dirichlet values on its boundary layer (000 (2.12)) or natural conditions. With
+//! band, with Dirichlet values on its boundary layer (000 (2.12)), natural conditions, or
+//! transparent ones (000 (2.11): the boundary flux of `Φ_approx = Φ^k` added, one solve). With
 //! more than one solve per step (Dirichlet only) this is the nested inner iteration of 000 §2.4:
 //! after each solve the band is rebuilt around the new zero level and the new iterate replaced
 //! by its signed distance there ([`super::distance`]; the corners of the cut cells keep the
@@ -13,10 +14,11 @@
 //! [`StepReport`]); the linear systems are [`crate::backends::dtgrid::scheme`]'s.
 
 use super::distance::{extend_distance, Keep};
-use super::fem::{assemble, elements};
+use super::fem::{assemble, elements, transparent_vector};
 use super::lattice::{band_around, crossing_cells_of_band, crossing_cells_of_fn, Plane};
 use super::Grid2;
 use crate::backends::dtgrid::band::Band;
+use crate::backends::dtgrid::fem::Weight;
 use crate::backends::dtgrid::lattice::NarrowBand;
 use crate::backends::dtgrid::mcf::{McfOptions, StepReport};
 use crate::backends::dtgrid::scheme::{solve_all, solve_dirichlet, system_matrix, Bc};
@@ -83,17 +85,15 @@ impl PlaneMcf {
         Ok(PlaneMcf { plane, nb, phi })
     }
 
-    /// One time step of length `tau` under `o` (Dirichlet or natural conditions).
-    /// Errors: [`Error::InvalidInput`] for a bad `tau`, no solve per step or transparent
-    /// conditions (not available in the plane), or a band that leaves the grid;
+    /// One time step of length `tau` under `o` (Dirichlet, natural or transparent conditions).
+    /// Errors: [`Error::InvalidInput`] for a bad `tau`, no solve per step, or a band that leaves
+    /// the grid;
     /// [`Error::EmptyLevelSet`] when the zero level vanishes; solver errors.
     pub fn step(&mut self, tau: f64, o: &McfOptions) -> Result<StepReport> {
-        if !(tau.is_finite() && tau > 0.0) || o.inner == 0 || o.bc == Bc::Transparent {
+        if !(tau.is_finite() && tau > 0.0) || o.inner == 0 {
             return Err(Error::InvalidInput(format!(
-                "planar mean curvature step: tau = {tau}, solves per step = {}, conditions {} \
-                 (tau and solves positive; dirichlet or natural)",
+                "planar mean curvature step: tau = {tau}, solves per step = {} (both positive)",
                 o.inner,
-                o.bc.name()
             )));
         }
         let plane = self.plane;
@@ -105,17 +105,25 @@ impl PlaneMcf {
         for m in 1..=solves {
             let t = Instant::now();
             let n = nb.band.len();
-            let mats = assemble(&plane, &elements(&nb), n, &phik, o.eps)?;
+            let w = Weight::Mcf { eps: o.eps };
+            let el = elements(&nb);
+            let mats = assemble(&plane, &el, n, &phik, w)?;
             let a = system_matrix(&mats, tau)?;
-            let b: Vec<f64> = mats.mass.iter().zip(&phik).map(|(m, p)| m * p).collect();
+            let mut b: Vec<f64> = mats.mass.iter().zip(&phik).map(|(m, p)| m * p).collect();
             rep.times.assembly += t.elapsed().as_secs_f64();
             let t = Instant::now();
             let mut x = approx.clone();
-            rep.cg_iterations += if o.bc == Bc::Dirichlet {
-                let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
-                solve_dirichlet(&a, &b, &fixed, &mut x)?
-            } else {
-                solve_all(&a, &b, &mut x)?
+            rep.cg_iterations += match o.bc {
+                Bc::Dirichlet => {
+                    let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
+                    solve_dirichlet(&a, &b, &fixed, &mut x)?
+                }
+                Bc::Natural => solve_all(&a, &b, &mut x)?,
+                Bc::Transparent => {
+                    let g = transparent_vector(&plane, &el, n, &phik, &approx, w);
+                    b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
+                    solve_all(&a, &b, &mut x)?
+                }
             };
             rep.solves += 1;
             rep.times.solve += t.elapsed().as_secs_f64();

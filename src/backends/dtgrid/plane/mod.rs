@@ -15,13 +15,16 @@
 //! values, gradients, Hessians, nodal curvature), `level.rs` (the zero level as polylines by
 //! marching squares, with crossings and mid-points on the bicubic zero level; area, length),
 //! `distance.rs` (the signed distance extension of 000 §2.4), `fem.rs` (the Q1 band matrices
-//! of 000 (2.6)–(2.7)), `mcf.rs` (one mean curvature step, 000 (2.5), (2.12)), `backend.rs`
+//! of 000 (2.6)–(2.7) and the transparent boundary vector of 000 (2.9)), `heat.rs` (the heat
+//! equation on a circle with natural or transparent conditions, 000 Table 2.1 in the plane),
+//! `mcf.rs` (one mean curvature step, 000 (2.5), (2.11), (2.12)), `backend.rs`
 //! ([`DtGrid2Backend`]).
 
 pub mod backend;
 pub mod cubic;
 pub mod distance;
 pub mod fem;
+pub mod heat;
 pub mod lattice;
 pub mod level;
 pub mod mcf;
