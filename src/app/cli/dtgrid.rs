@@ -163,8 +163,8 @@ pub fn run(cmd: DtGrid) -> Result<()> {
                 let t = r.step.times;
                 println!(
                     "one mean curvature step, sphere r = 1/3, {n}³, j = {}, tau = h²: {} band \
-                     nodes, {} solves, {} CG iterations",
-                    a.band, r.nodes, r.step.solves, r.step.cg_iterations
+                     nodes ({} interior unknowns), {} solves, {} CG iterations",
+                    a.band, r.nodes, r.interior, r.step.solves, r.step.cg_iterations
                 );
                 println!("phase        wall s    cpu s   (000 Table 4.1 at 513³, j = 1)");
                 for (name, w, c, p) in [

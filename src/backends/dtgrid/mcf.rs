@@ -15,7 +15,7 @@ use super::band::Band;
 use super::distance::{extend_distance, zero_level_integral, Keep};
 use super::fem::{elements, transparent_vector, Weight};
 use super::lattice::{band_around, crossing_cells_of_band, Lattice, NarrowBand, C3};
-use super::scheme::{solve_all, solve_dirichlet, Bc};
+use super::scheme::{solve_all, solve_dirichlet_rtol, Bc};
 use super::stencil::assemble_scaled;
 use crate::error::{Error, Result};
 use std::time::Instant;
@@ -31,8 +31,13 @@ pub struct McfOptions {
     pub inner: usize,
     /// The regularisation `ε` of `|∇Φ|_ε`.
     pub eps: f64,
-    /// The inner iteration stops when the boundary data change by less than `delta · h`.
+    /// The inner iteration stops when the boundary data change by less than `delta · h` in the
+    /// mean over the boundary nodes and the rebuilt band differs from the last one in fewer than
+    /// `delta` times its nodes (nodes the zero level passes by less than the tolerance).
     pub delta: f64,
+    /// The relative residual at which CG stops (relative to the residual of the initial guess,
+    /// the last iterate).
+    pub cg_rtol: f64,
 }
 
 impl Default for McfOptions {
@@ -43,6 +48,7 @@ impl Default for McfOptions {
             inner: 5,
             eps: 1e-3,
             delta: 1e-2,
+            cg_rtol: 1e-6,
         }
     }
 }
@@ -127,6 +133,73 @@ fn extend<B: Band<Coord = C3>>(
     extend_distance(lat, from, phi, to, Keep::OldBand, shells as f64 * lat.h)
 }
 
+/// The mean change `|new − old|` of the boundary data over the boundary nodes of `new_nb` that
+/// `old_nb` also holds (the update of the Dirichlet data in the stopping test of 000 §2.4).
+fn boundary_change<B: Band<Coord = C3>>(
+    new_nb: &NarrowBand<B>,
+    new: &[f64],
+    old_nb: &NarrowBand<B>,
+    old: &[f64],
+) -> f64 {
+    let (mut sum, mut count) = (0.0, 0usize);
+    for ((c, v), _) in new_nb
+        .band
+        .coords()
+        .zip(new)
+        .zip(&new_nb.interior)
+        .filter(|(_, &int)| !int)
+    {
+        if let Some(k) = old_nb.band.index(c) {
+            sum += (v - old[k]).abs();
+            count += 1;
+        }
+    }
+    if count == 0 {
+        f64::INFINITY
+    } else {
+        sum / count as f64
+    }
+}
+
+/// `Φ^k` (a signed distance on `from`) on the band `to`, where `d` is the signed distance to the
+/// new iterate's zero level: kept where `from` has the node; on a new node `d` plus the mean of
+/// `Φ^k − d` over its `3³` neighbours in both bands (two distance functions differ by the normal
+/// displacement of their zero levels, which varies slowly). A new node without such neighbours
+/// falls back to the distance transform of `Φ^k`.
+fn extend_phi<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    from: &B,
+    phi: &[f64],
+    to: &B,
+    d: &[f64],
+    shells: i32,
+) -> Vec<f64> {
+    let mut out = Vec::with_capacity(to.len());
+    for (i, c) in to.coords().enumerate() {
+        if let Some(k) = from.index(c) {
+            out.push(phi[k]);
+            continue;
+        }
+        let (mut sum, mut count) = (0.0, 0usize);
+        for dz in -1..=1 {
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let q = [c[0] + dx, c[1] + dy, c[2] + dz];
+                    if let (Some(k), Some(l)) = (from.index(q), to.index(q)) {
+                        sum += phi[k] - d[l];
+                        count += 1;
+                    }
+                }
+            }
+        }
+        if count == 0 {
+            return extend(lat, from, phi, to, shells);
+        }
+        out.push(d[i] + sum / count as f64);
+    }
+    out
+}
+
 /// The band of half-width `j` around the zero level of `phi` on `nb` and the signed distance to
 /// that zero level on it (signs from `phi` where the node was in `nb`).
 /// Errors: [`Error::EmptyLevelSet`] when the zero level has vanished, [`Error::InvalidInput`]
@@ -202,12 +275,20 @@ impl<B: Band<Coord = C3> + Clone> McfState<B> {
         let mut phik = self.phi.clone();
         let mut approx = self.phi.clone();
         let solves = if o.bc == Bc::Dirichlet { o.inner } else { 1 };
+        // The system of the last solve, reused while `Φ^k` and the band stay the same.
+        let mut system: Option<(Vec<super::fem::Element>, crate::fem::Csr, Vec<f64>)> = None;
         for m in 1..=solves {
             let t = Clock::start();
             let n = nb.band.len();
-            let el = elements(&nb);
-            let (mass, a) = assemble_scaled(&lat, &el, n, &phik, w, tau, true)?;
-            let mut b: Vec<f64> = mass.iter().zip(&phik).map(|(m, p)| m * p).collect();
+            let (el, a, b) = match system.take() {
+                Some(s) => s,
+                None => {
+                    let el = elements(&nb);
+                    let (mass, a) = assemble_scaled(&lat, &el, n, &phik, w, tau, true)?;
+                    let b: Vec<f64> = mass.iter().zip(&phik).map(|(m, p)| m * p).collect();
+                    (el, a, b)
+                }
+            };
             let (w_s, c_s) = t.read();
             rep.times.assembly += w_s;
             rep.times.assembly_cpu += c_s;
@@ -216,12 +297,12 @@ impl<B: Band<Coord = C3> + Clone> McfState<B> {
             rep.cg_iterations += match o.bc {
                 Bc::Dirichlet => {
                     let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
-                    solve_dirichlet(&a, &b, &fixed, &mut x)?
+                    solve_dirichlet_rtol(&a, &b, &fixed, &mut x, o.cg_rtol)?
                 }
                 Bc::Natural => solve_all(&a, &b, &mut x)?,
                 Bc::Transparent => {
                     let g = transparent_vector(&lat, &el, n, &phik, &approx, w);
-                    b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
+                    let b: Vec<f64> = b.iter().zip(&g).map(|(b, g)| b + tau * g).collect();
                     solve_all(&a, &b, &mut x)?
                 }
             };
@@ -233,18 +314,29 @@ impl<B: Band<Coord = C3> + Clone> McfState<B> {
             let (new_nb, new_approx) = rebuild_keeping(&lat, &nb, &x, Keep::Crossing)?;
             let same =
                 new_nb.band.len() == nb.band.len() && new_nb.band.coords().eq(nb.band.coords());
-            let change = new_nb
-                .band
-                .coords()
-                .zip(&new_approx)
-                .zip(&new_nb.interior)
-                .filter(|(_, &int)| !int)
-                .filter_map(|((c, v), _)| nb.band.index(c).map(|k| (v - approx[k]).abs()))
-                .fold(0.0f64, f64::max);
-            let done = same && change < o.delta * lat.h;
+            let done = same || {
+                let gained = new_nb
+                    .band
+                    .coords()
+                    .filter(|c| nb.band.index(*c).is_none())
+                    .count();
+                let lost = nb.band.len() + gained - new_nb.band.len();
+                ((gained + lost) as f64) < o.delta * nb.band.len() as f64
+            };
+            let done =
+                done && boundary_change(&new_nb, &new_approx, &nb, &approx) < o.delta * lat.h;
             // On the same band the extension of `Φ^k` is the one it already has.
             if m < solves && !done && !same {
-                phik = extend(&lat, &self.nb.band, &self.phi, &new_nb.band, shells(nb.j));
+                phik = extend_phi(
+                    &lat,
+                    &self.nb.band,
+                    &self.phi,
+                    &new_nb.band,
+                    &new_approx,
+                    shells(nb.j),
+                );
+            } else {
+                system = Some((el, a, b));
             }
             nb = new_nb;
             approx = new_approx;

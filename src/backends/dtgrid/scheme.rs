@@ -87,6 +87,19 @@ pub fn solve_all(a: &Csr, b: &[f64], x: &mut [f64]) -> Result<usize> {
 /// others are solved for (000 (2.12)); returns the CG iterations.
 /// Errors: as [`solve_all`].
 pub fn solve_dirichlet(a: &Csr, b: &[f64], fixed: &[bool], x: &mut [f64]) -> Result<usize> {
+    solve_dirichlet_rtol(a, b, fixed, x, cg_options().rtol)
+}
+
+/// [`solve_dirichlet`] stopping at the relative residual `rtol` (relative to the residual of the
+/// guess in `x`).
+/// Errors: as [`solve_all`].
+pub fn solve_dirichlet_rtol(
+    a: &Csr,
+    b: &[f64],
+    fixed: &[bool],
+    x: &mut [f64],
+    rtol: f64,
+) -> Result<usize> {
     let d = a.diagonal();
     let mut r = a.mul(x);
     r.iter_mut()
@@ -112,7 +125,10 @@ pub fn solve_dirichlet(a: &Csr, b: &[f64], fixed: &[bool], x: &mut [f64]) -> Res
         },
         &r,
         &mut y,
-        &cg_options(),
+        &CgOptions {
+            rtol,
+            ..cg_options()
+        },
     );
     x.iter_mut().zip(&y).for_each(|(x, y)| *x += y);
     finish(rep, x)

@@ -256,6 +256,9 @@ pub fn write_rows(dir: &Path, name: &str, rows: &[Row]) -> Result<()> {
 pub struct StepTiming {
     /// Band nodes.
     pub nodes: usize,
+    /// Interior band nodes (`I^j`, the unknowns of the Dirichlet solve; 000 Table 4.1 counts
+    /// these as degrees of freedom).
+    pub interior: usize,
     /// The step's report (solves, CG iterations, wall and processor seconds per phase).
     pub step: anisomesh::backends::dtgrid::mcf::StepReport,
     /// Stored entries of the system matrix `M + τ L`.
@@ -274,6 +277,7 @@ pub fn step_timing(n: usize, j: usize) -> Result<StepTiming> {
     let lat = Lattice::unit(n)?;
     let mut s: McfState<B> = McfState::new(lat, j, &|p| p.length() - 1.0 / 3.0)?;
     let nodes = s.nb.band.len();
+    let interior = s.nb.interior.iter().filter(|&&i| i).count();
     let tau = lat.h * lat.h;
     let (nnz, matvec_rate, matvec_bandwidth) = {
         let el = elements(&s.nb);
@@ -311,6 +315,7 @@ pub fn step_timing(n: usize, j: usize) -> Result<StepTiming> {
     let step = s.step(tau, &o)?;
     Ok(StepTiming {
         nodes,
+        interior,
         step,
         nnz,
         matvec_rate,
