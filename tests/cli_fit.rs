@@ -203,3 +203,25 @@ fn compare_with_mmg2d_checks_every_output() {
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// The input is read without its own `check()`, the fitted mesh is checked instead: an input
+/// defect that only `check()` finds (two vertices at one point) still gets the input's message
+/// with its line, and nothing is written.
+#[test]
+fn an_input_defect_found_by_check_is_reported_on_the_input() {
+    let d = tmp("defect");
+    let (mp, sp, out) = (d.join("dup.mesh"), d.join("dup.sol"), d.join("out.mesh"));
+    std::fs::write(
+        &mp,
+        "MeshVersionFormatted 2\nDimension 2\nVertices\n6\n0 0 0\n1 0 0\n0 1 0\n\
+         0 0 0\n-1 0 0\n0 -1 0\nTriangles\n2\n1 2 3 0\n4 5 6 0\nEnd\n",
+    )
+    .unwrap();
+    io::write_sol(&sp, &Sol::scalar(vec![-0.5, 0.5, -0.5, -0.5, -1.5, -0.5])).unwrap();
+    let expected = io::read_mesh(&mp).unwrap_err().to_string();
+    assert!(expected.contains("dup.mesh:"), "{expected}");
+    let o = anisomesh(&["fit", "--input", s(&mp), "--sol", s(&sp), "-o", s(&out)]);
+    assert_clean_error(&o, &expected);
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -12,7 +12,7 @@
 
 use super::atomic::atomic_write;
 use super::tokens::{read_text, shorten, Out, Tokens};
-use super::validate::{build_mesh, RawEdge, RawMesh2};
+use super::validate::{build_mesh_with, RawEdge, RawMesh2};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::mesh::{Mesh2, NONE};
@@ -285,6 +285,11 @@ fn read_vertex_list(tk: &mut Tokens, kw: &str) -> Result<Vec<(u32, usize)>> {
 /// Parses a two-dimensional Medit mesh from `text` (`path` is used in messages). A
 /// `Dimension 3` file without tetrahedra whose vertices all have `z = 0` is accepted as 2D.
 pub fn parse_mesh2(path: &Path, text: &str) -> Result<Mesh2> {
+    parse_mesh2_with(path, text, true)
+}
+
+/// [`parse_mesh2`]; with `check = false` the final [`Mesh2::check`] is left out.
+fn parse_mesh2_with(path: &Path, text: &str, check: bool) -> Result<Mesh2> {
     let d = parse(path, text)?;
     let n = d.point_ref.len();
     let points: Vec<DVec2> = match d.dim {
@@ -327,7 +332,7 @@ pub fn parse_mesh2(path: &Path, text: &str) -> Result<Mesh2> {
         required: d.required,
         last_line: d.last_line,
     };
-    build_mesh(path, raw)
+    build_mesh_with(path, raw, check)
 }
 
 /// Reads a two-dimensional Medit `.mesh` file; see [`parse_mesh2`].
@@ -337,6 +342,13 @@ pub fn read_medit2(path: &Path) -> Result<Mesh2> {
 
 /// The start of [`parse_medit3`]'s refusal of a file of another dimension.
 pub(crate) const NOT_3D: &str = "expected a Dimension 3 mesh";
+
+/// [`read_medit2`] without the final [`Mesh2::check`] (indices, orientation, elements,
+/// adjacency and labels are still validated): for a caller that checks a mesh derived from
+/// this one and calls [`read_medit2`] for its message when that check fails (`anisomesh fit`).
+pub fn read_medit2_unchecked(path: &Path) -> Result<Mesh2> {
+    parse_mesh2_with(path, &read_text(path)?, false)
+}
 
 /// Parses a three-dimensional Medit mesh (vertices, tetrahedra, triangles). Indices are checked;
 /// element orientation and conformity are left to the 3D mesh module.

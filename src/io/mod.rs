@@ -20,9 +20,9 @@ pub use gmsh::{
     parse_msh, read_msh, read_msh_full, write_msh, write_msh_named, GmshMesh, PhysicalName,
 };
 pub use medit::{
-    parse_medit3, parse_medit3_features, parse_mesh2, read_medit2, read_medit3,
-    read_medit3_features, write_medit2, write_medit2_to, write_medit3, write_medit3_features,
-    Medit3,
+    parse_medit3, parse_medit3_features, parse_mesh2, read_medit2, read_medit2_unchecked,
+    read_medit3, read_medit3_features, write_medit2, write_medit2_to, write_medit3,
+    write_medit3_features, Medit3,
 };
 pub use obj::{parse_obj, read_obj, write_obj, SurfaceMesh};
 pub use sol::{

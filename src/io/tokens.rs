@@ -117,15 +117,22 @@ impl<'a> Tokens<'a> {
     }
 
     /// The next token parsed as `T` (an integer type); `what` names the quantity in errors.
-    pub fn int<T: FromStr>(&mut self, what: &str) -> Result<T> {
+    pub fn int<T: FromStr + TryFrom<i64>>(&mut self, what: &str) -> Result<T> {
         self.int_with(&|| what.to_string())
     }
 
     /// As [`Tokens::int`], with the name built only for an error (no allocation per item).
-    pub fn int_with<T: FromStr>(&mut self, what: &dyn Fn() -> String) -> Result<T> {
+    pub fn int_with<T: FromStr + TryFrom<i64>>(&mut self, what: &dyn Fn() -> String) -> Result<T> {
         let Some((t, _)) = self.next_token() else {
             return Err(self.err(format!("unexpected end of file while reading {}", what())));
         };
+        // The common case, 1 to 18 decimal digits without a sign, read directly; anything else
+        // (signs, out-of-range values, errors) goes through `str::parse`, with its results.
+        if let Some(v) = plain_digits(t) {
+            if let Ok(v) = T::try_from(v) {
+                return Ok(v);
+            }
+        }
         t.parse::<T>().map_err(|_| {
             let what = what();
             if t.parse::<i128>().is_ok() {
@@ -205,6 +212,24 @@ impl<'a> Tokens<'a> {
     pub fn capacity(&self, count: usize, per_item: usize) -> usize {
         count.min((self.text.len() - self.pos) / (2 * per_item.max(1)) + 1)
     }
+}
+
+/// The value of a token of 1 to 18 ASCII digits (no sign), which fits in an `i64`; `None` for
+/// any other token.
+fn plain_digits(t: &str) -> Option<i64> {
+    let b = t.as_bytes();
+    if b.is_empty() || b.len() > 18 {
+        return None;
+    }
+    let mut v: i64 = 0;
+    for &c in b {
+        let d = c.wrapping_sub(b'0');
+        if d > 9 {
+            return None;
+        }
+        v = v * 10 + i64::from(d);
+    }
+    Some(v)
 }
 
 /// First 40 characters of a token, for messages.

@@ -40,7 +40,14 @@ pub(crate) struct RawMesh2 {
 
 /// Validates `raw` and builds the mesh: indices, finite coordinates, orientation (with the
 /// all-clockwise repair), conformity and labels; see the module documentation.
-pub(crate) fn build_mesh(path: &Path, mut raw: RawMesh2) -> Result<Mesh2> {
+pub(crate) fn build_mesh(path: &Path, raw: RawMesh2) -> Result<Mesh2> {
+    build_mesh_with(path, raw, true)
+}
+
+/// [`build_mesh`] without its last step, the full [`Mesh2::check`] (`check = false`): indices,
+/// orientation, elements, adjacency and labels are still validated. For callers that check a
+/// mesh derived from this one instead and re-read the input when that check fails.
+pub(crate) fn build_mesh_with(path: &Path, mut raw: RawMesh2, check: bool) -> Result<Mesh2> {
     let perr = |line: usize, msg: String| Error::parse(path, line, msg);
     let np = raw.points.len();
     if raw.tris.is_empty() {
@@ -109,7 +116,9 @@ pub(crate) fn build_mesh(path: &Path, mut raw: RawMesh2) -> Result<Mesh2> {
     for &(v, _) in &raw.required {
         mesh.required[v as usize] = true;
     }
-    mesh.check().map_err(|e| to_defect(e, &mesh.tris))?;
+    if check {
+        mesh.check().map_err(|e| to_defect(e, &mesh.tris))?;
+    }
     Ok(mesh)
 }
 

@@ -33,6 +33,12 @@ pub struct SolvationArgs {
     /// Courant number of the adaptive time step.
     #[arg(long, default_value_t = 0.5)]
     cfl: f64,
+    /// Semi-implicit stabilisation factor of the curvature term (0: the explicit step).
+    #[arg(long, default_value_t = 1.0)]
+    stabilise: f64,
+    /// With --stabilise > 0: the curvature limit of the time step in units of the explicit one.
+    #[arg(long, default_value_t = 16.0)]
+    curvature_steps: f64,
     /// Velocity extension of 001 §3: harmonic or ls (least squares).
     #[arg(long, default_value = "harmonic")]
     extension: String,
@@ -64,6 +70,8 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
         cfl: a.cfl,
         tol: a.tol,
         max_steps: a.steps,
+        stabilise: a.stabilise,
+        curvature_steps: a.curvature_steps,
         extension: match a.extension.as_str() {
             "harmonic" => ExtensionKind::Harmonic,
             "ls" => ExtensionKind::LeastSquares,

@@ -23,6 +23,7 @@
 
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
+use crate::mesh::build::validate_elements;
 use crate::mesh::{check_p1_field, next, prev, Mesh2, NONE};
 
 /// Label of the triangles where the level set is negative (as `mmg2d -ls`).
@@ -283,8 +284,16 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
             }
         }
     }
-    let mut mesh = Mesh2::from_parts(points, tris, tri_ref)?;
-    // The base labels on the pieces of base edges; interface edges labelled REF_INTERFACE.
+    validate_elements(&points, &tris)?;
+    // The pieces of a base triangle are consecutive: `first[t]..first[t + 1]`.
+    let mut first = Vec::with_capacity(base.n_tris() + 1);
+    first.push(0u32);
+    for (k, w) in parent.windows(2).enumerate() {
+        if w[0] != w[1] {
+            first.push(k as u32 + 1);
+        }
+    }
+    first.push(tris.len() as u32);
     let on_base_edge = |x: u32, a: u32, b: u32| {
         x == a
             || x == b
@@ -293,25 +302,59 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
                 (ca == a && cb == b) || (ca == b && cb == a)
             })
     };
+    // The piece of the base triangles `range` with the directed edge (x, y).
+    let find_edge = |range: std::ops::Range<usize>, x: u32, y: u32| -> Option<(usize, usize)> {
+        range.into_iter().find_map(|u| {
+            let tr = tris[u];
+            (0..3)
+                .find(|&i| tr[next(i)] == x && tr[prev(i)] == y)
+                .map(|i| (u, i))
+        })
+    };
+    // Adjacency from the base mesh's: an edge of a piece is shared with another piece of the
+    // same base triangle, or lies on a base edge and is shared with a piece of the base
+    // neighbour across it (which cut that edge at the same new vertex), or is on the boundary.
+    let mut neighbours = vec![[NONE; 3]; tris.len()];
+    let mut edge_ref = vec![[0i32; 3]; tris.len()];
     for (t, &pt) in parent.iter().enumerate() {
         let pt = pt as usize;
+        let own = first[pt] as usize..first[pt + 1] as usize;
         for j in 0..3 {
-            let [x, y] = mesh.edge_vertices(t, j);
+            let tr = tris[t];
+            let (x, y) = (tr[next(j)], tr[prev(j)]);
             let mut r = 0;
-            for k in 0..3 {
-                let [a, b] = base.edge_vertices(pt, k);
-                if on_base_edge(x, a, b) && on_base_edge(y, a, b) {
-                    r = base.edge_ref[pt][k];
-                    break;
+            let mut nbr = find_edge(own.clone(), y, x);
+            if nbr.is_none() {
+                for k in 0..3 {
+                    let [a, b] = base.edge_vertices(pt, k);
+                    if on_base_edge(x, a, b) && on_base_edge(y, a, b) {
+                        r = base.edge_ref[pt][k];
+                        let n = base.neighbours[pt][k];
+                        if n != NONE {
+                            let n = n as usize;
+                            nbr = find_edge(first[n] as usize..first[n + 1] as usize, y, x);
+                            if nbr.is_none() {
+                                return Err(Error::InvalidInput(format!(
+                                    "interface fitting: the base triangles {pt} and {n} do not \
+                                     share the edge of vertices {a} and {b} (not a conforming mesh)"
+                                )));
+                            }
+                        }
+                        break;
+                    }
                 }
             }
-            let n = mesh.neighbours[t][j];
-            if n != NONE && mesh.tri_ref[n as usize] != mesh.tri_ref[t] {
-                r = REF_INTERFACE;
+            if let Some((u, _)) = nbr {
+                neighbours[t][j] = u as u32;
+                if tri_ref[u] != tri_ref[t] {
+                    r = REF_INTERFACE;
+                }
             }
-            mesh.edge_ref[t][j] = r;
+            edge_ref[t][j] = r;
         }
     }
+    let mut mesh = Mesh2::assemble(points, tris, neighbours, tri_ref);
+    mesh.edge_ref = edge_ref;
     mesh.vert_ref[..nb].copy_from_slice(&base.vert_ref);
     mesh.corner[..nb].copy_from_slice(&base.corner);
     mesh.required[..nb].copy_from_slice(&base.required);
