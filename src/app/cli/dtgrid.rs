@@ -90,6 +90,16 @@ pub struct McfArgs {
     /// One run on the zero level of this function of x, y, z (negative inside), in (−½, ½)³.
     #[arg(long)]
     expr: Option<String>,
+    /// A sphere (r = --radius) on a band too large for assembled matrices: f32 values,
+    /// matrix-free products, windowed rebuild; prints bytes per node, peak memory, phase times.
+    #[arg(long, conflicts_with_all = ["shape", "expr", "step_timing"])]
+    matrix_free: bool,
+    /// Steps of a --matrix-free run (default: to --t-end).
+    #[arg(long, requires = "matrix_free")]
+    steps: Option<usize>,
+    /// The sphere's radius in a --matrix-free run.
+    #[arg(long, default_value_t = 1.0 / 3.0, requires = "matrix_free")]
+    radius: f64,
     /// Output directory.
     #[arg(short, long, default_value = "out/dtgrid")]
     output: PathBuf,
@@ -136,6 +146,20 @@ pub fn run(cmd: DtGrid) -> Result<()> {
                 a.n, a.band, &a.bc, a.inner, a.tau, a.t_end, &a.shape, &a.expr, &a.output,
             ))
         }
+        DtGrid::Mcf(a) if a.matrix_free => super::dtgrid_big::run(&super::dtgrid_big::BigRun {
+            n: a.n.unwrap_or(1024),
+            radius: a.radius,
+            steps: a.steps,
+            tau: a.tau,
+            t_end: a.t_end,
+            mcf: McfOptions {
+                j: a.band,
+                bc: Bc::parse(&a.bc)?,
+                inner: a.inner,
+                ..McfOptions::default()
+            },
+            output: &a.output,
+        }),
         DtGrid::Heat(a) => {
             let rows = match a.n {
                 Some(n) => vec![repro::heat_row(&HeatOptions {

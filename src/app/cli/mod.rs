@@ -10,6 +10,7 @@ mod convert;
 mod crosscheck;
 mod curvature;
 mod dtgrid;
+mod dtgrid_big;
 mod dtgrid_obj;
 mod dtgrid_shape;
 mod fit;

@@ -108,6 +108,7 @@ struct LineWalk {
 
 /// The cells of a [`DtGrid`] whose `2^d` corners are all band nodes, in lexicographic order of
 /// their lowest corner, found by intersecting the runs of the `2^(d−1)` corner lines.
+#[derive(Clone)]
 pub struct CellIter<'a, C: DtCoord> {
     g: &'a DtGrid<C>,
     prim: Cursor,
@@ -138,6 +139,25 @@ impl<'a, C: DtCoord> CellIter<'a, C> {
             x: 0,
             hi: 0,
         }
+    }
+
+    /// One iterator per entry of the increasing `xs`, each starting before the first cell whose
+    /// lowest corner has first coordinate `≥ xs[k]` (it runs on to the end; the caller stops
+    /// it). One forward pass over the lines, so slabs of cells can be streamed in parallel.
+    pub fn slabs(g: &'a DtGrid<C>, xs: &[i32]) -> Vec<Self> {
+        let depth = C::DIM - 1;
+        let mut cur = Cursor::new(&g.levels, depth);
+        let mut out = Vec::with_capacity(xs.len());
+        for &x0 in xs {
+            let mut t = [i32::MIN; 3];
+            t[0] = x0;
+            cur.seek(&g.levels, &t[..depth]);
+            let mut it = Self::new(g);
+            it.prim = cur.clone();
+            it.sec = vec![cur.clone(); (1 << depth) - 1];
+            out.push(it);
+        }
+        out
     }
 
     fn nl(&self) -> usize {
