@@ -314,3 +314,46 @@ fn edits_reset_the_cache_of_what_they_change() {
         }
     }
 }
+
+/// The per-tetrahedron stamps: a tetrahedron carries the time of its creation or of its last
+/// vertex move; the others keep theirs, through compaction too; a move also resets the cache.
+#[test]
+fn tetrahedron_stamps_mark_exactly_the_changed_tetrahedra() {
+    let mut e = cube(3);
+    assert!(e.tet_stamp.iter().all(|&s| s == 0));
+    e.cache.iter_mut().for_each(|c| *c = 1.0);
+    let (a, b) = edges(&e)[5];
+    e.now = 7;
+    let before: Vec<[u32; 4]> = e.tets.clone();
+    let p = 0.5 * (e.points[a as usize] + e.points[b as usize]);
+    let m = e.split_edge(a, b, p).unwrap();
+    for (t, tet) in e.tets.iter().enumerate() {
+        let new = tet.contains(&m);
+        assert_eq!(e.tet_stamp[t] == 7, new, "tet {t}");
+        assert_eq!(e.cache[t].is_nan(), new, "tet {t}");
+        if !new {
+            assert_eq!(*tet, before[t]);
+        }
+    }
+    // Move an interior vertex a little: its ball gets the new time and loses its cache.
+    e.now = 9;
+    let v = (0..e.points.len() as u32)
+        .find(|&v| !e.on_boundary[v as usize] && v != m && e.alive(v))
+        .unwrap();
+    assert!(e.move_vertex(v, e.points[v as usize] + DVec3::splat(1e-3)));
+    for (t, tet) in e.tets.iter().enumerate() {
+        if tet.contains(&v) {
+            assert_eq!(e.tet_stamp[t], 9);
+            assert!(e.cache[t].is_nan());
+        } else {
+            assert!(e.tet_stamp[t] <= 7);
+        }
+    }
+    let n9: usize = e.tet_stamp.iter().filter(|&&s| s == 9).count();
+    let n7: usize = e.tet_stamp.iter().filter(|&&s| s == 7).count();
+    e.compact(None);
+    assert_eq!(e.tet_stamp.len(), e.tets.len());
+    assert_eq!(e.tet_stamp.iter().filter(|&&s| s == 9).count(), n9);
+    assert_eq!(e.tet_stamp.iter().filter(|&&s| s == 7).count(), n7);
+    valid(&e);
+}

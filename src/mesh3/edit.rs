@@ -57,6 +57,12 @@ pub struct EditMesh3 {
     /// of its vertices, resets it, so a value that is not `NaN` belongs to the current
     /// tetrahedron with its current vertex positions.
     pub cache: Vec<f64>,
+    /// Per tetrahedron slot: the value of [`EditMesh3::now`] when the tetrahedron was created
+    /// or one of its vertices last moved, so that a caller can tell which tetrahedra changed
+    /// since a given time.
+    pub tet_stamp: Vec<u32>,
+    /// The current time of the edits, set by the caller (the adaptation sets its pass number).
+    pub now: u32,
 }
 
 /// The sorted vertices of a triangle.
@@ -94,6 +100,8 @@ impl EditMesh3 {
             fixed: vec![false; m.n_points()],
             free: Vec::new(),
             cache: vec![f64::NAN; m.n_tets()],
+            tet_stamp: vec![0; m.n_tets()],
+            now: 0,
         };
         for r in &e.ridges {
             for &v in r {
@@ -228,9 +236,17 @@ impl EditMesh3 {
     pub fn face_pair(&self, f: [u32; 3]) -> Option<[u32; 2]> {
         let mut out = [0u32; 2];
         let mut n = 0;
-        for &t in &self.ball[f[0] as usize] {
+        // Scan the smallest of the three balls.
+        let mut k = 0;
+        for i in 1..3 {
+            if self.ball[f[i] as usize].len() < self.ball[f[k] as usize].len() {
+                k = i;
+            }
+        }
+        let (x, y) = (f[(k + 1) % 3], f[(k + 2) % 3]);
+        for &t in &self.ball[f[k] as usize] {
             let tet = &self.tets[t as usize];
-            if tet.contains(&f[1]) && tet.contains(&f[2]) {
+            if tet.contains(&x) && tet.contains(&y) {
                 if n == 2 {
                     return None;
                 }
@@ -309,12 +325,14 @@ impl EditMesh3 {
                 self.tets[t as usize] = tet;
                 self.tet_ref[t as usize] = r;
                 self.cache[t as usize] = f64::NAN;
+                self.tet_stamp[t as usize] = self.now;
                 t
             }
             None => {
                 self.tets.push(tet);
                 self.tet_ref.push(r);
                 self.cache.push(f64::NAN);
+                self.tet_stamp.push(self.now);
                 (self.tets.len() - 1) as u32
             }
         };
@@ -360,12 +378,12 @@ impl EditMesh3 {
         for (i, &v) in old.iter().enumerate() {
             map[v as usize] = i as u32;
         }
-        let mut live: Vec<(u32, [u32; 4], i32)> = Vec::with_capacity(self.n_live_tets());
+        let mut live: Vec<(u32, [u32; 4], i32, u32)> = Vec::with_capacity(self.n_live_tets());
         for (t, tet) in self.tets.iter().enumerate() {
             if tet[0] != NONE {
                 let nt = tet.map(|v| map[v as usize]);
                 let key = *nt.iter().min().unwrap_or(&0);
-                live.push((key, nt, self.tet_ref[t]));
+                live.push((key, nt, self.tet_ref[t], self.tet_stamp[t]));
             }
         }
         live.sort_by_key(|x| x.0);
@@ -380,6 +398,7 @@ impl EditMesh3 {
             .collect();
         self.tets = live.iter().map(|x| x.1).collect();
         self.tet_ref = live.iter().map(|x| x.2).collect();
+        self.tet_stamp = live.iter().map(|x| x.3).collect();
         self.cache = vec![f64::NAN; self.tets.len()];
         self.free.clear();
         self.ball = vec![Vec::new(); self.points.len()];

@@ -392,6 +392,11 @@ impl EditMesh3 {
     /// the three around the new edge `(d, e)`. Returns them, or `None` when `f` is on the
     /// boundary, between sub-domains, `(d, e)` is already an edge or does not cross `f`.
     pub fn face_swap_check(&self, f: [u32; 3]) -> Option<[[u32; 4]; 3]> {
+        self.face_swap_plan(f).map(|x| x.1)
+    }
+
+    /// [`EditMesh3::face_swap_check`] that also returns the two tetrahedra on `f`.
+    pub fn face_swap_plan(&self, f: [u32; 3]) -> Option<([u32; 2], [[u32; 4]; 3])> {
         let ts = self.face_pair(f)?;
         if self.tet_ref[ts[0] as usize] != self.tet_ref[ts[1] as usize] {
             return None;
@@ -414,7 +419,7 @@ impl EditMesh3 {
                 [d, e, ring[2], ring[0]],
             ];
             if new.iter().all(|&t| self.vol(t) > 0.0) {
-                return Some(new);
+                return Some((ts, new));
             }
         }
         None
@@ -459,10 +464,17 @@ impl EditMesh3 {
         if !self.move_valid(v, p) {
             return false;
         }
+        self.set_point(v, p);
+        true
+    }
+
+    /// Moves `v` to `p` (the caller has validated the move) and resets the cached values of
+    /// the tetrahedra of its ball.
+    pub fn set_point(&mut self, v: u32, p: DVec3) {
         self.points[v as usize] = p;
         for &t in &self.ball[v as usize] {
             self.cache[t as usize] = f64::NAN;
+            self.tet_stamp[t as usize] = self.now;
         }
-        true
     }
 }

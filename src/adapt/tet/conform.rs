@@ -154,7 +154,7 @@ pub(crate) fn length_smooth_pass(ctx: &mut Ctx<'_>) -> usize {
                 .map(|&t| ctx.quality_of(ctx.mesh.tets[t as usize], Some((v, np, &m))))
                 .fold(f64::INFINITY, f64::min);
             if q >= floor && ctx.mesh.move_valid(v, np) {
-                ctx.mesh.points[v as usize] = np;
+                ctx.mesh.set_point(v, np);
                 ctx.metric[v as usize] = m;
                 ctx.touch_ball(v);
                 count += 1;

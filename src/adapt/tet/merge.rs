@@ -204,7 +204,7 @@ fn same_label(ctx: &Ctx<'_>, a: u32, b: u32) -> bool {
 pub(crate) fn apply(ctx: &mut Ctx<'_>, mg: Merge) {
     ctx.touch_ball(mg.a);
     ctx.mesh.collapse_unchecked(mg.a, mg.b);
-    ctx.mesh.points[mg.b as usize] = mg.p;
+    ctx.mesh.set_point(mg.b, mg.p);
     ctx.metric[mg.b as usize] = mg.m;
     ctx.touch_ball(mg.b);
 }

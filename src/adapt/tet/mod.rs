@@ -78,6 +78,7 @@ impl<'a> Ctx<'a> {
     /// Starts a pass: a new stamp.
     pub fn next_pass(&mut self) -> u32 {
         self.pass += 1;
+        self.mesh.now = self.pass;
         self.pass
     }
 

@@ -29,11 +29,12 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
     type Plan = (u32, u32, Vec<[u32; 4]>);
     const SORTED: bool = true;
 
-    /// The edges of the tetrahedra below [`Q_SWAP`] with a vertex changed since the previous
-    /// pass, each once with the worst quality of those tetrahedra.
+    /// The edges of the tetrahedra below [`Q_SWAP`] whose shell has a tetrahedron created or
+    /// moved since the previous pass (an unchanged shell gives the verdict it gave then), each
+    /// once with the worst quality of those tetrahedra.
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
         let since = ctx.start(super::Op::EdgeRemoval);
-        let bad = ctx.bad_tets(Q_SWAP, since);
+        let bad = ctx.bad_tets(Q_SWAP, 0);
         let mut e: Vec<(u32, u32, u64)> = Vec::with_capacity(6 * bad.len());
         for t in bad {
             let tet = ctx.mesh.tets[t as usize];
@@ -44,7 +45,16 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
         }
         e.sort_unstable();
         e.dedup_by_key(|x| (x.0, x.1));
-        e.into_iter().map(|(a, b, q)| (q, a, b)).collect()
+        let m = &ctx.mesh;
+        let fresh = |&(a, b, _): &(u32, u32, u64)| {
+            m.ball[a as usize]
+                .iter()
+                .any(|&t| m.tet_stamp[t as usize] >= since && m.tets[t as usize].contains(&b))
+        };
+        e.into_iter()
+            .filter(fresh)
+            .map(|(a, b, q)| (q, a, b))
+            .collect()
     }
 
     fn survey(&self, _: &Ctx<'_>, s: Self::Site, _: bool, out: &mut Vec<(Self::Key, Option<()>)>) {
@@ -96,18 +106,26 @@ impl Operator<Ctx<'_>> for FaceSwap {
     type Plan = ([u32; 3], [[u32; 4]; 3]);
     const SORTED: bool = true;
 
-    /// The interior faces of the tetrahedra below [`Q_SWAP`] with a vertex changed since the
-    /// previous pass, each once with the worst quality of those tetrahedra.
+    /// The interior faces of the tetrahedra below [`Q_SWAP`] with one of their two tetrahedra
+    /// created or moved since the previous pass, each once with the worst quality of those
+    /// tetrahedra.
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
         let since = ctx.start(super::Op::FaceSwap);
-        let bad = ctx.bad_tets(Q_SWAP, since);
+        let bad = ctx.bad_tets(Q_SWAP, 0);
         let mut fs: Vec<([u32; 3], u64)> = Vec::with_capacity(4 * bad.len());
         for t in bad {
             let tet = ctx.mesh.tets[t as usize];
             let q = ctx.tq[t as usize].max(0.0).to_bits();
             for i in 0..4 {
                 let f = sorted3(tet_face(&tet, i));
-                if !ctx.mesh.bfaces.contains_key(&f) {
+                if ctx.mesh.bfaces.contains_key(&f) {
+                    continue;
+                }
+                let fresh = ctx.mesh.tet_stamp[t as usize] >= since
+                    || ctx.mesh.face_pair(f).is_some_and(|p| {
+                        p.iter().any(|&x| ctx.mesh.tet_stamp[x as usize] >= since)
+                    });
+                if fresh {
                     fs.push((f, q));
                 }
             }
@@ -126,11 +144,10 @@ impl Operator<Ctx<'_>> for FaceSwap {
     }
 
     fn check(&mut self, ctx: &mut Ctx<'_>, (_, f): Self::Key, _: Option<()>) -> Option<Self::Plan> {
-        let new = ctx.mesh.face_swap_check(f)?;
+        let ([t0, t1], new) = ctx.mesh.face_swap_plan(f)?;
         if ctx.length(new[0][0], new[0][1]) > ctx.l_max {
             return None;
         }
-        let [t0, t1] = ctx.mesh.face_pair(f)?;
         let q0 = ctx.cached_quality(t0).min(ctx.cached_quality(t1));
         let q1 = new
             .iter()
