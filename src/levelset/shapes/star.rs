@@ -117,11 +117,11 @@ impl Shape<DVec3> for StarSurface {
         let d = p - self.centre;
         d.length() - self.radius_towards(d)
     }
-    /// Exact ([`StarSurface::jet`]).
+    /// Exact: the Cartesian form of `u` differentiated exactly (second-order forward mode).
     fn gradient(&self, p: DVec3) -> DVec3 {
         self.jet(p).g
     }
-    /// Exact ([`StarSurface::jet`]; zero contribution of the angular term on the axis).
+    /// Exact, as the gradient; on the axis the angular term contributes zero.
     fn hessian(&self, p: DVec3) -> Sym3 {
         self.jet(p).h
     }
