@@ -10,6 +10,7 @@
 
 mod ball;
 mod csg;
+mod jet;
 mod normalized;
 mod space;
 mod star;

@@ -4,8 +4,10 @@
 
 use std::f64::consts::{PI, TAU};
 
+use super::jet::Jet;
 use super::Shape;
 use crate::geom::DVec3;
+use crate::metric::Sym3;
 
 /// The star-shaped surface `|p − c| = r0 + a cos 6θ cos² 3φ` (004 §5; `r0 = 0.45`, `a = 0.3`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -42,6 +44,37 @@ impl StarSurface {
             0.0
         };
         self.radius_at(theta, phi)
+    }
+
+    /// `u` at `p` with its exact gradient and Hessian, from the Cartesian form of the radius:
+    /// with `d = p − c = (x, y, z)`, `s² = x² + y²` and `r² = s² + z²`,
+    /// `cos 6θ = Re((x + iy)⁶) / s⁶` and `cos 3φ = s (s² − 3z²) / r³`, so
+    /// `u = r − r0 − a Re((x + iy)⁶) (s² − 3z²)² / (s⁴ r⁶)`, a quotient of polynomials
+    /// differentiated exactly ([`Jet`]). On the axis through the centre (`s = 0`) the last term
+    /// is `O(s²)` with a direction-dependent second derivative: its value and gradient are zero
+    /// there and its Hessian is taken as zero (the mean over the directions around the axis).
+    /// At the centre itself the gradient and Hessian are zero.
+    fn jet(&self, p: DVec3) -> Jet {
+        let d = p - self.centre;
+        let [x, y, z] = [0, 1, 2].map(|i| Jet::var(d, i));
+        let s2 = x.mul(x).add(y.mul(y));
+        let r2 = s2.add(z.mul(z));
+        if r2.v == 0.0 {
+            return Jet::constant(-self.radius_towards(d));
+        }
+        let r = r2.sqrt();
+        let u = r.sub(Jet::constant(self.r0));
+        if s2.v == 0.0 {
+            return u;
+        }
+        // (x + iy)² = (x² − y², 2xy), then the cube: (x + iy)⁶ = ((x + iy)²)³.
+        let (a, b) = (x.mul(x).sub(y.mul(y)), x.mul(y).scale(2.0));
+        let (a2, b2) = (a.mul(a).sub(b.mul(b)), a.mul(b).scale(2.0));
+        let re6 = a2.mul(a).sub(b2.mul(b));
+        let q = s2.sub(z.mul(z).scale(3.0));
+        let den = s2.mul(s2).mul(r2).mul(r2).mul(r2);
+        let term = re6.mul(q).mul(q).mul(den.recip());
+        u.sub(term.scale(self.amplitude))
     }
 
     /// The enclosed volume `∫∫ ρ³/3 cos φ dφ dθ`, by Gauss–Legendre quadrature in `φ` and the
@@ -83,6 +116,14 @@ impl Shape<DVec3> for StarSurface {
     fn distance(&self, p: DVec3) -> f64 {
         let d = p - self.centre;
         d.length() - self.radius_towards(d)
+    }
+    /// Exact: the Cartesian form of `u` differentiated exactly (second-order forward mode).
+    fn gradient(&self, p: DVec3) -> DVec3 {
+        self.jet(p).g
+    }
+    /// Exact, as the gradient; on the axis the angular term contributes zero.
+    fn hessian(&self, p: DVec3) -> Sym3 {
+        self.jet(p).h
     }
     fn is_distance(&self) -> bool {
         false
