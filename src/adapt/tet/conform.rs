@@ -38,6 +38,17 @@ const ROUNDS: usize = 16;
 /// them, [`Ctx::length`]).
 pub(crate) fn in_range_share(ctx: &Ctx<'_>) -> f64 {
     let (mut n, mut inr) = (0usize, 0usize);
+    for_each_edge_length(ctx, |_, _, l| {
+        n += 1;
+        if (ctx.l_min..=ctx.l_max).contains(&l) {
+            inr += 1;
+        }
+    });
+    inr as f64 / n.max(1) as f64
+}
+
+/// Calls `f(a, b, length)` once for every edge `a < b` of the live mesh, in vertex order.
+fn for_each_edge_length(ctx: &Ctx<'_>, mut f: impl FnMut(u32, u32, f64)) {
     let mut nb = Vec::new();
     for a in 0..ctx.mesh.points.len() as u32 {
         if !ctx.mesh.alive(a) {
@@ -45,33 +56,20 @@ pub(crate) fn in_range_share(ctx: &Ctx<'_>) -> f64 {
         }
         ctx.mesh.vertex_neighbours(a, &mut nb);
         for &b in nb.iter().filter(|&&b| b > a) {
-            let l = ctx.length(a, b);
-            n += 1;
-            if (ctx.l_min..=ctx.l_max).contains(&l) {
-                inr += 1;
-            }
+            f(a, b, ctx.length(a, b));
         }
     }
-    inr as f64 / n.max(1) as f64
 }
 
 /// One pass of conformity collapses (see the module docs); returns the number applied.
 pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
     ctx.next_pass();
     let mut short: Vec<(u64, u32, u32)> = Vec::new();
-    let mut nb = Vec::new();
-    for a in 0..ctx.mesh.points.len() as u32 {
-        if !ctx.mesh.alive(a) {
-            continue;
+    for_each_edge_length(ctx, |a, b, l| {
+        if l < ctx.l_min {
+            short.push((l.to_bits(), a, b));
         }
-        ctx.mesh.vertex_neighbours(a, &mut nb);
-        for &b in nb.iter().filter(|&&b| b > a) {
-            let l = ctx.length(a, b);
-            if l < ctx.l_min {
-                short.push((l.to_bits(), a, b));
-            }
-        }
-    }
+    });
     short.sort_unstable();
     let mut count = 0;
     for (_, a, b) in short {
