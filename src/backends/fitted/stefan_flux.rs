@@ -12,9 +12,10 @@
 //! too few vertices for a quadratic (a thin arm, the outer boundary), the fit falls back to a
 //! linear one, and without any vertex the side's gradient is zero (an insulated side).
 
-use crate::error::{Error, Result};
+use crate::error::Result;
+use crate::flows::stefan::check_velocity_inputs;
 use crate::geom::DVec2;
-use crate::mesh::{check_p1_field, Mesh2};
+use crate::mesh::Mesh2;
 use rayon::prelude::*;
 
 /// Vertex-to-triangle incidence of the live triangles (CSR: `start`, `tris`).
@@ -110,22 +111,7 @@ pub fn stefan_velocity_quadratic(
     temperature: &[f64],
 ) -> Result<Vec<f64>> {
     let n = mesh.n_points();
-    check_p1_field(n, temperature, "temperature")?;
-    if on_interface.len() != n || normals.len() != n {
-        return Err(Error::InvalidInput(format!(
-            "Stefan velocity: the mesh has {n} vertices but the interface mask and normals have {} and {}",
-            on_interface.len(),
-            normals.len()
-        )));
-    }
-    if let Some(v) = (0..n).find(|&v| {
-        on_interface[v] && ((normals[v].length() - 1.0).abs() >= 1e-6 || normals[v].is_nan())
-    }) {
-        return Err(Error::InvalidInput(format!(
-            "Stefan velocity: the normal at interface vertex {v} is not a unit vector ({})",
-            normals[v]
-        )));
-    }
+    check_velocity_inputs(n, on_interface, normals, temperature)?;
     let (start, vt) = vertex_triangles(mesh);
     let side_of = |t: usize| usize::from(mesh.tri_ref[t] != inside_label);
     let gradient = |v: usize, side: usize| -> DVec2 {

@@ -16,4 +16,5 @@ mod velocity;
 
 pub use frank::{exp_integral_e1, FrankCircle};
 pub use heat::heat_step;
+pub(crate) use velocity::check_velocity_inputs;
 pub use velocity::stefan_velocity;

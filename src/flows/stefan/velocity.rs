@@ -23,22 +23,7 @@ pub fn stefan_velocity(
     temperature: &[f64],
 ) -> Result<Vec<f64>> {
     let n = mesh.n_points();
-    check_p1_field(mesh.n_points(), temperature, "temperature")?;
-    if on_interface.len() != n || normals.len() != n {
-        return Err(Error::InvalidInput(format!(
-            "Stefan velocity: the mesh has {n} vertices but the interface mask and normals have {} and {}",
-            on_interface.len(),
-            normals.len()
-        )));
-    }
-    if let Some(v) = (0..n).find(|&v| {
-        on_interface[v] && ((normals[v].length() - 1.0).abs() >= 1e-6 || normals[v].is_nan())
-    }) {
-        return Err(Error::InvalidInput(format!(
-            "Stefan velocity: the normal at interface vertex {v} is not a unit vector ({})",
-            normals[v]
-        )));
-    }
+    check_velocity_inputs(n, on_interface, normals, temperature)?;
     // Per vertex and side: Σ area · ∇T and Σ area.
     let mut grad = vec![[DVec2::ZERO; 2]; n];
     let mut area = vec![[0.0f64; 2]; n];
@@ -75,4 +60,31 @@ pub fn stefan_velocity(
             -(mean(1) - mean(0)).dot(normals[v])
         })
         .collect())
+}
+
+/// The checks shared by the Stefan velocity reconstructions: a temperature, an interface mask and
+/// normals with one entry per vertex, finite temperatures, unit normals at interface vertices.
+pub(crate) fn check_velocity_inputs(
+    n: usize,
+    on_interface: &[bool],
+    normals: &[DVec2],
+    temperature: &[f64],
+) -> Result<()> {
+    check_p1_field(n, temperature, "temperature")?;
+    if on_interface.len() != n || normals.len() != n {
+        return Err(Error::InvalidInput(format!(
+            "Stefan velocity: the mesh has {n} vertices but the interface mask and normals have {} and {}",
+            on_interface.len(),
+            normals.len()
+        )));
+    }
+    if let Some(v) = (0..n).find(|&v| {
+        on_interface[v] && ((normals[v].length() - 1.0).abs() >= 1e-6 || normals[v].is_nan())
+    }) {
+        return Err(Error::InvalidInput(format!(
+            "Stefan velocity: the normal at interface vertex {v} is not a unit vector ({})",
+            normals[v]
+        )));
+    }
+    Ok(())
 }
