@@ -2,7 +2,7 @@
 
 use crate::app::repro::stefan::{frank, paper};
 use anisomesh::backends::fitted::{
-    Anisotropy, Coefficient, StefanCurvature, StefanFlux, VelocityExtension,
+    Anisotropy, Coefficient, StefanAdvection, StefanCurvature, StefanFlux, VelocityExtension,
 };
 use anisomesh::error::{Error, Result};
 use clap::Args;
@@ -59,6 +59,13 @@ pub struct StefanArgs {
     /// numerical surface tension).
     #[arg(long, default_value = "keep", value_parser = ["keep", "all"])]
     redistance: String,
+    /// Level-set update (pentagon, star): levelset (phi -= dt v |grad phi|, the level-set
+    /// equation of 001 (1.5)) or plain (phi -= dt v, exact for a signed distance).
+    #[arg(long, default_value = "plain", value_parser = ["plain", "levelset"])]
+    advection: String,
+    /// The seed's size (pentagon: circumradius, default 0.1; star: mean radius, default 0.2).
+    #[arg(long)]
+    seed_radius: Option<f64>,
     /// With --redistance keep: every M-th step redistances every vertex (0: never).
     #[arg(long, default_value_t = 0)]
     full_redistance_every: usize,
@@ -204,6 +211,16 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         curvature,
         keep_interface: a.redistance == "keep",
         full_redistance_every: a.full_redistance_every,
+        advection: if a.advection == "levelset" {
+            StefanAdvection::LevelSet
+        } else {
+            StefanAdvection::Plain
+        },
+        seed_radius: a.seed_radius.unwrap_or(if star {
+            paper::STAR_RADIUS
+        } else {
+            paper::SEED_RADIUS
+        }),
         snapshots: if star { 4 } else { 8 },
     };
     let rep = paper::run(&case)?;
@@ -220,16 +237,17 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         a.redistance
     );
     println!(
-        "{:>7} {:>6} {:>10} {:>8} {:>8} {:>8} {:>8} {:>6} {:>4}",
-        "t", "step", "area", "length", "fitted", "max vn", "max |T|", "ext", "CG"
+        "{:>7} {:>6} {:>10} {:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>4}",
+        "t", "step", "area", "length", "energy", "fitted", "max vn", "max |T|", "ext", "CG"
     );
     for s in &rep.snapshots {
         println!(
-            "{:>7.4} {:>6} {:>10.4e} {:>8.3} {:>8} {:>8.3} {:>8.2e} {:>6} {:>4}",
+            "{:>7.4} {:>6} {:>10.4e} {:>8.3} {:>9.2e} {:>8} {:>8.3} {:>8.2e} {:>6} {:>4}",
             s.time,
             s.step,
             s.area,
             s.interface_length,
+            s.energy_drift,
             s.fitted_vertices,
             s.max_vn,
             s.max_interface_temperature,

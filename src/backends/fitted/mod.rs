@@ -31,7 +31,7 @@ pub use fit::{
 };
 pub use reinit::{poisson_reinit, PoissonOutput, PoissonReinit};
 pub use stefan::{
-    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanCurvature, StefanFlux,
-    StefanOptions, StefanState, StefanStepReport, VelocityExtension,
+    circle_deviation, stefan_step, Anisotropy, Coefficient, StefanAdvection, StefanCurvature,
+    StefanFlux, StefanOptions, StefanState, StefanStepReport, VelocityExtension,
 };
 pub use stefan_flux::stefan_velocity_quadratic;

@@ -24,7 +24,7 @@ use super::fit::{fit, FitOptions, FittedMesh, REF_INSIDE};
 use super::stefan_flux::stefan_velocity_quadratic;
 use crate::error::{Error, Result};
 use crate::flows::stefan::{heat_step, stefan_velocity};
-use crate::geom::DVec2;
+use crate::geom::{simplex, DVec2};
 use crate::levelset::redistance::redistance_geometric;
 use crate::mesh::{check_p1_field, Mesh2};
 
@@ -162,6 +162,20 @@ pub struct StefanOptions<'a> {
     pub flux: StefanFlux,
     /// How the curvature of the Gibbs–Thomson relation (6.2) is computed.
     pub curvature: StefanCurvature,
+    /// How the level set is moved with the extended velocity (001 §6 step 8).
+    pub advection: StefanAdvection,
+}
+
+/// The level-set update of 001 §6 step 8 on the base vertices of the band.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StefanAdvection {
+    /// `φ ← φ − Δt v`: the level-set equation (001 (1.5)) for a signed distance (`|∇φ| = 1`).
+    Plain,
+    /// `φ ← φ − Δt v |∇φ|` (001 (1.5)), `|∇φ|` at a vertex the area-weighted mean of the P1
+    /// gradient norms of its triangles cut by the zero level (all its triangles if none is cut),
+    /// so the zero level moves with `v` where `φ` is not a distance (the ends of the cut edges
+    /// that [`StefanOptions::keep_interface`] does not redistance).
+    LevelSet,
 }
 
 /// The curvature `κ` of the Gibbs–Thomson relation (001 (6.2)) at the interface vertices.
@@ -184,6 +198,10 @@ pub enum StefanCurvature {
 pub enum StefanFlux {
     /// The area-weighted mean of each side's P1 gradients around the vertex
     /// ([`crate::flows::stefan::stefan_velocity`]): first order, biased where `∂²T/∂n² ≠ 0`.
+    /// The bias depends on how the grid cuts the interface: without surface tension it selects
+    /// the grid's directions (the pentagon seed of 001 Fig. 6.1 grows eight arms along the axes
+    /// and diagonals of the Union-Jack grid, needles along the axes); with surface tension its
+    /// smoothing keeps the arms of 001 Figs. 6.2–6.4 smooth.
     P1Mean,
     /// Each side's least-squares quadratic through the vertex over two rings
     /// ([`super::stefan_velocity_quadratic`]): second order for smooth `T`.
@@ -217,8 +235,47 @@ impl<'a> StefanOptions<'a> {
             curvature: StefanCurvature::InterfaceFit {
                 half_width: 3.0 * h,
             },
+            advection: StefanAdvection::Plain,
         }
     }
+}
+
+/// `|∇φ|` at the base vertices for [`StefanAdvection::LevelSet`]: the area-weighted mean of the
+/// P1 gradient norms of the triangles around each vertex that the zero level cuts (a sign change
+/// or a zero among the vertex values), or of all its triangles when none is cut.
+fn gradient_norms(base: &Mesh2, phi: &[f64]) -> Vec<f64> {
+    let n = base.n_points();
+    // Per vertex: [Σ area·|∇φ| over cut triangles, Σ area (cut), same over all triangles].
+    let mut acc = vec![[0.0f64; 4]; n];
+    for t in base.live_tris() {
+        let tri = base.tris[t];
+        let f = tri.map(|v| phi[v as usize]);
+        let g = simplex::p1_gradient(&base.tri_points(t), &f).length();
+        let a = base.tri_area(t).abs();
+        let lo = f.iter().fold(f64::INFINITY, |m, &x| m.min(x));
+        let hi = f.iter().fold(f64::NEG_INFINITY, |m, &x| m.max(x));
+        let cut = lo <= 0.0 && hi >= 0.0;
+        for &v in &tri {
+            let e = &mut acc[v as usize];
+            if cut {
+                e[0] += a * g;
+                e[1] += a;
+            }
+            e[2] += a * g;
+            e[3] += a;
+        }
+    }
+    acc.iter()
+        .map(|e| {
+            if e[1] > 0.0 {
+                e[0] / e[1]
+            } else if e[3] > 0.0 {
+                e[2] / e[3]
+            } else {
+                1.0
+            }
+        })
+        .collect()
 }
 
 fn check_options(o: &StefanOptions) -> Result<()> {
@@ -411,9 +468,13 @@ pub fn stefan_step(
     };
     // Steps 8–9: move the level set in the band, redistance.
     let mut phi = fm.u[..fm.n_base_vertices].to_vec();
-    for (p, &v) in phi.iter_mut().zip(&velocity) {
+    let grad = match o.advection {
+        StefanAdvection::Plain => vec![1.0; phi.len()],
+        StefanAdvection::LevelSet => gradient_norms(base, &phi),
+    };
+    for ((p, &v), &g) in phi.iter_mut().zip(&velocity).zip(&grad) {
         if p.abs() <= o.band {
-            *p -= o.dt * v;
+            *p -= o.dt * v * g;
         }
     }
     let mut redistanced = redistance_geometric(base, &phi)?;

@@ -9,11 +9,12 @@
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
 use anisomesh::backends::fitted::{
-    fit, stefan_step, FitOptions, StefanCurvature, StefanFlux, StefanOptions, StefanState,
-    VelocityExtension,
+    fit, stefan_step, FitOptions, StefanAdvection, StefanCurvature, StefanFlux, StefanOptions,
+    StefanState, VelocityExtension,
 };
 use anisomesh::backends::fitted::{Anisotropy, Coefficient};
 use anisomesh::error::{Error, Result};
+use anisomesh::fem::p1::lumped_mass;
 use anisomesh::geom::DVec2;
 use anisomesh::io::atomic_write;
 use anisomesh::levelset::redistance::redistance_geometric;
@@ -64,6 +65,10 @@ pub struct Case {
     pub keep_interface: bool,
     /// With `keep_interface`: every this many steps every vertex is redistanced (0: never).
     pub full_redistance_every: usize,
+    /// The level-set update.
+    pub advection: StefanAdvection,
+    /// The seed's size: the pentagon's circumradius, the star's mean radius.
+    pub seed_radius: f64,
     /// Number of snapshot intervals.
     pub snapshots: usize,
 }
@@ -79,6 +84,11 @@ pub struct Snapshot {
     pub area: f64,
     /// Interface length.
     pub interface_length: f64,
+    /// Heat content `∫ T` (lumped P1 on the base mesh).
+    pub heat: f64,
+    /// Energy balance `(∫ T − A) − (∫ T₀ − A₀)`: zero for the exact Stefan problem with
+    /// insulated walls (latent heat 1: the solidified area warms the liquid by as much).
+    pub energy_drift: f64,
     /// Vertices of the fitted mesh.
     pub fitted_vertices: usize,
     /// Largest `|v_n|` of the last step.
@@ -92,6 +102,9 @@ pub struct Snapshot {
     /// Interface vertex positions.
     #[serde(skip)]
     pub interface: Vec<(f64, f64)>,
+    /// Interface edges (end points).
+    #[serde(skip)]
+    pub edges: Vec<((f64, f64), (f64, f64))>,
 }
 
 /// The report of [`run`].
@@ -119,6 +132,10 @@ pub struct PaperReport {
     pub curvature: String,
     /// Whether redistancing kept the level set at the ends of the cut edges.
     pub keep_interface: bool,
+    /// The level-set update.
+    pub advection: String,
+    /// The seed's size.
+    pub seed_radius: f64,
     /// With `keep_interface`: every this many steps every vertex was redistanced (0: never).
     pub full_redistance_every: usize,
     /// Wall time of the loop, seconds.
@@ -147,30 +164,40 @@ fn snapshot(
     last: Option<&anisomesh::backends::fitted::StefanStepReport>,
 ) -> Result<Snapshot> {
     let fm = fit(base, &st.phi, &FitOptions::default())?;
-    let interface = fm
+    let heat: f64 = lumped_mass(base)?
+        .iter()
+        .zip(&st.temperature)
+        .map(|(m, t)| m * t)
+        .sum();
+    let xy = |v: u32| {
+        let p = fm.mesh.points[v as usize];
+        (p.x, p.y)
+    };
+    let edges: Vec<_> = fm
         .interface_edges()
         .into_iter()
-        .map(|[a, _]| {
-            let p = fm.mesh.points[a as usize];
-            (p.x, p.y)
-        })
+        .map(|[a, b]| (xy(a), xy(b)))
         .collect();
+    let interface = edges.iter().map(|e| e.0).collect();
     Ok(Snapshot {
         time: st.time,
         step,
         area: fm.area_inside(),
         interface_length: fm.interface_length(),
+        heat,
+        energy_drift: 0.0,
         fitted_vertices: last.map_or(fm.mesh.n_points(), |r| r.fitted_vertices),
         max_vn: last.map_or(0.0, |r| r.max_vn),
         max_interface_temperature: last.map_or(0.0, |r| r.max_interface_temperature),
         cg_iterations: last.map_or(0, |r| r.cg_iterations),
         extension_unknowns: last.map_or(0, |r| r.extension_unknowns),
         interface,
+        edges,
     })
 }
 
 /// The base mesh and initial level set (signed distance, negative in the seed) of `seed`.
-pub fn initial(seed: Seed, n: usize) -> Result<(Mesh2, Vec<f64>)> {
+pub fn initial(seed: Seed, n: usize, radius: f64) -> Result<(Mesh2, Vec<f64>)> {
     let half = match seed {
         Seed::Pentagon => 1.5,
         Seed::Star => 1.0,
@@ -188,7 +215,7 @@ pub fn initial(seed: Seed, n: usize) -> Result<(Mesh2, Vec<f64>)> {
                 .map(|k| {
                     let a =
                         std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * k as f64 / 5.0;
-                    SEED_RADIUS * DVec2::new(a.cos(), a.sin())
+                    radius * DVec2::new(a.cos(), a.sin())
                 })
                 .collect();
             // Largest signed distance to the edge lines: negative exactly inside the pentagon.
@@ -208,7 +235,7 @@ pub fn initial(seed: Seed, n: usize) -> Result<(Mesh2, Vec<f64>)> {
             .iter()
             .map(|p| {
                 let th = p.y.atan2(p.x);
-                p.length() - STAR_RADIUS * (1.0 + STAR_AMPLITUDE * (8.0 * th).cos())
+                p.length() - radius * (1.0 + STAR_AMPLITUDE * (8.0 * th).cos())
             })
             .collect(),
     };
@@ -224,7 +251,18 @@ pub fn run(c: &Case) -> Result<PaperReport> {
             "stefan: need n >= 8, dt > 0 and t_end > 0, finite (got {n}, {dt}, {t_end})"
         )));
     }
-    let (base, phi) = initial(c.seed, n)?;
+    let half = match c.seed {
+        Seed::Pentagon => 1.5,
+        Seed::Star => 1.0,
+    };
+    if !(c.seed_radius.is_finite() && c.seed_radius > 0.0 && c.seed_radius < 0.75 * half) {
+        return Err(Error::InvalidInput(format!(
+            "stefan: the seed radius must be positive and below {} (got {})",
+            0.75 * half,
+            c.seed_radius
+        )));
+    }
+    let (base, phi) = initial(c.seed, n, c.seed_radius)?;
     let temperature = phi
         .iter()
         .map(|&f| if f < 0.0 { 0.0 } else { -0.5 })
@@ -240,6 +278,7 @@ pub fn run(c: &Case) -> Result<PaperReport> {
     opts.flux = c.flux;
     opts.curvature = c.curvature;
     opts.keep_interface = c.keep_interface;
+    opts.advection = c.advection;
     opts.eps_c = c.eps_c;
     opts.eps_v = c.eps_v;
     let steps = (t_end / dt).round().max(1.0) as usize;
@@ -254,6 +293,10 @@ pub fn run(c: &Case) -> Result<PaperReport> {
             snaps.push(snapshot(&base, &st, k, Some(&rep))?);
         }
     }
+    let e0 = snaps[0].heat - snaps[0].area;
+    for s in &mut snaps {
+        s.energy_drift = s.heat - s.area - e0;
+    }
     Ok(PaperReport {
         case: c.seed,
         n,
@@ -266,6 +309,8 @@ pub fn run(c: &Case) -> Result<PaperReport> {
         flux: format!("{:?}", c.flux),
         curvature: format!("{:?}", c.curvature),
         keep_interface: c.keep_interface,
+        advection: format!("{:?}", c.advection),
+        seed_radius: c.seed_radius,
         full_redistance_every: c.full_redistance_every,
         seconds: start.elapsed().as_secs_f64(),
         snapshots: snaps,
@@ -281,6 +326,15 @@ pub fn write(dir: &Path, name: &str, rep: &PaperReport) -> Result<()> {
     })?;
     atomic_write(&dir.join("stefan.json"), |w| {
         serde_json::to_writer_pretty(&mut *w, rep).map_err(std::io::Error::other)
+    })?;
+    atomic_write(&dir.join("interface.csv"), |w| {
+        writeln!(w, "time,x0,y0,x1,y1")?;
+        for s in &rep.snapshots {
+            for (a, b) in &s.edges {
+                writeln!(w, "{},{},{},{},{}", s.time, a.0, a.1, b.0, b.1)?;
+            }
+        }
+        Ok(())
     })?;
     let series = rep
         .snapshots
