@@ -267,7 +267,7 @@ mod tests {
             "", "-", ".", "e5", "1e", "1e+", "1.e", "+-1", "nan", "inf", "-x", "1e12345",
         ] {
             assert!(
-                scan_f64(s.as_bytes()).is_none_or(|(_, n)| n < s.len()),
+                scan_f64(s.as_bytes()).map_or(true, |(_, n)| n < s.len()),
                 "{s}"
             );
         }

@@ -74,7 +74,7 @@ fn push_short_decimal(buf: &mut Vec<u8>, x: f64) -> bool {
                 buf.extend_from_slice(frac);
             } else {
                 buf.extend_from_slice(b"0.");
-                buf.extend(std::iter::repeat_n(b'0', k - d.len()));
+                buf.resize(buf.len() + k - d.len(), b'0');
                 buf.extend_from_slice(d);
             }
             return true;
