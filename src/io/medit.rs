@@ -11,7 +11,8 @@
 //! `VertexOnGeometricEdge`, ...) are skipped.
 
 use super::atomic::atomic_write;
-use super::tokens::{read_text, shorten, Out, Tokens};
+use super::textout::Out;
+use super::tokens::{read_text, shorten, Tokens};
 use super::validate::{build_mesh_with, RawEdge, RawMesh2};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
@@ -42,7 +43,10 @@ pub struct Medit3 {
 #[derive(Default)]
 struct MeditData {
     dim: usize,
+    /// The coordinates in dimension 3 (x y z per vertex).
     coords: Vec<f64>,
+    /// The vertices in dimension 2.
+    points2: Vec<DVec2>,
     point_ref: Vec<i32>,
     point_line: Vec<usize>,
     tris: Vec<[u32; 3]>,
@@ -199,13 +203,22 @@ impl MeditData {
         let n = tk.count("number of vertices")?;
         self.has_vertices = true;
         let cap = tk.capacity(n, 2 * self.dim + 2);
-        self.coords.reserve(cap * self.dim);
+        if self.dim == 2 {
+            self.points2.reserve(cap);
+        } else {
+            self.coords.reserve(cap * self.dim);
+        }
         self.point_ref.reserve(cap);
         self.point_line.reserve(cap);
         for k in 0..n {
             let what = || format!("vertex {} of {n}", k + 1);
-            for _ in 0..self.dim {
-                self.coords.push(tk.real_with(&what)?);
+            if self.dim == 2 {
+                let x = tk.real_with(&what)?;
+                self.points2.push(DVec2::new(x, tk.real_with(&what)?));
+            } else {
+                for _ in 0..self.dim {
+                    self.coords.push(tk.real_with(&what)?);
+                }
             }
             self.point_ref.push(tk.int_with(&what)?);
             self.point_line.push(tk.token_line());
@@ -290,12 +303,10 @@ pub fn parse_mesh2(path: &Path, text: &str) -> Result<Mesh2> {
 
 /// [`parse_mesh2`]; with `check = false` the final [`Mesh2::check`] is left out.
 fn parse_mesh2_with(path: &Path, text: &str, check: bool) -> Result<Mesh2> {
-    let d = parse(path, text)?;
+    let mut d = parse(path, text)?;
     let n = d.point_ref.len();
     let points: Vec<DVec2> = match d.dim {
-        2 => (0..n)
-            .map(|v| DVec2::new(d.coords[2 * v], d.coords[2 * v + 1]))
-            .collect(),
+        2 => std::mem::take(&mut d.points2),
         _ => {
             if !d.tets.is_empty() {
                 return Err(Error::parse(
@@ -440,11 +451,10 @@ pub fn write_medit2_to(w: &mut dyn Write, mesh: &Mesh2) -> std::io::Result<()> {
         o.int(mesh.vert_ref.get(v).copied().unwrap_or(0));
         o.line()?;
     }
-    let live: Vec<usize> = mesh.live_tris().collect();
     o.text("\nTriangles\n");
-    o.int(live.len());
+    o.int(mesh.live_tris().count());
     o.text("\n");
-    for &t in &live {
+    for t in mesh.live_tris() {
         let [a, b, c] = mesh.tris[t];
         o.ints(&[
             a as i64 + 1,

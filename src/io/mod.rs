@@ -6,10 +6,12 @@
 //! for the one documented repair: a mesh whose triangles are *all* clockwise is reoriented).
 
 mod atomic;
+mod decimal;
 mod gmsh;
 mod medit;
 mod obj;
 mod sol;
+mod textout;
 mod tokens;
 mod validate;
 mod vtk;

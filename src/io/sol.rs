@@ -7,7 +7,8 @@
 
 use super::atomic::atomic_write;
 use super::medit::{is_keyword, read_header_keyword, skip_section};
-use super::tokens::{read_text, shorten, Out, Tokens};
+use super::textout::Out;
+use super::tokens::{read_text, shorten, Tokens};
 use crate::error::{Error, Result};
 use crate::metric::{Sym2, Sym3};
 use std::path::Path;

@@ -1,6 +1,7 @@
 //! A whitespace tokenizer over a text file that remembers line numbers, shared by the Medit and
 //! Gmsh readers. Numbers may be split across lines; every error names the file and line.
 
+use super::decimal::{scan_f64, scan_uint};
 use crate::error::{Error, Result};
 use std::path::Path;
 use std::str::FromStr;
@@ -98,6 +99,29 @@ impl<'a> Tokens<'a> {
         Some((&self.text[start..self.pos], self.line))
     }
 
+    /// The number at the next token read by `scan` straight from the text, with its length in
+    /// bytes, when it takes the whole token (see [`super::decimal`]); nothing but the whitespace
+    /// before it is consumed.
+    #[inline]
+    fn scan_next<T>(&mut self, scan: fn(&[u8]) -> Option<(T, usize)>) -> Option<(T, usize)> {
+        self.skip_space();
+        let b = &self.text.as_bytes()[self.pos..];
+        let (v, n) = scan(b)?;
+        match b.get(n) {
+            Some(&c) if !((c <= b' ' && c.is_ascii_whitespace()) || Some(c) == self.comment) => {
+                None
+            }
+            _ => Some((v, n)),
+        }
+    }
+
+    /// Consumes the `n` bytes of a token found by [`Tokens::scan_next`].
+    #[inline]
+    fn consume(&mut self, n: usize) {
+        self.pos += n;
+        self.tok_line = self.line;
+    }
+
     /// The next token without consuming it.
     pub fn peek(&mut self) -> Option<&'a str> {
         let (pos, line, last) = (self.pos, self.line, self.tok_line);
@@ -122,17 +146,26 @@ impl<'a> Tokens<'a> {
     }
 
     /// As [`Tokens::int`], with the name built only for an error (no allocation per item).
+    #[inline]
     pub fn int_with<T: FromStr + TryFrom<i64>>(&mut self, what: &dyn Fn() -> String) -> Result<T> {
-        let Some((t, _)) = self.next_token() else {
-            return Err(self.err(format!("unexpected end of file while reading {}", what())));
-        };
-        // The common case, 1 to 18 decimal digits without a sign, read directly; anything else
-        // (signs, out-of-range values, errors) goes through `str::parse`, with its results.
-        if let Some(v) = plain_digits(t) {
+        // The common case, 1 to 18 decimal digits without a sign, read straight from the text;
+        // anything else (signs, out-of-range values, errors) goes through `str::parse`, with its
+        // results.
+        if let Some((v, n)) = self.scan_next(scan_uint) {
             if let Ok(v) = T::try_from(v) {
+                self.consume(n);
                 return Ok(v);
             }
         }
+        self.int_token(what)
+    }
+
+    /// [`Tokens::int_with`] on the next token through `str::parse`.
+    #[inline(never)]
+    fn int_token<T: FromStr>(&mut self, what: &dyn Fn() -> String) -> Result<T> {
+        let Some((t, _)) = self.next_token() else {
+            return Err(self.err(format!("unexpected end of file while reading {}", what())));
+        };
         t.parse::<T>().map_err(|_| {
             let what = what();
             if t.parse::<i128>().is_ok() {
@@ -165,7 +198,19 @@ impl<'a> Tokens<'a> {
     }
 
     /// As [`Tokens::real`], with the name built only for an error (no allocation per item).
+    #[inline]
     pub fn real_with(&mut self, what: &dyn Fn() -> String) -> Result<f64> {
+        // Plain decimals read straight from the text (exactly as `str::parse` reads them).
+        if let Some((x, n)) = self.scan_next(scan_f64) {
+            self.consume(n);
+            return Ok(x);
+        }
+        self.real_token(what)
+    }
+
+    /// [`Tokens::real_with`] on the next token through `str::parse`.
+    #[inline(never)]
+    fn real_token(&mut self, what: &dyn Fn() -> String) -> Result<f64> {
         let Some((t, _)) = self.next_token() else {
             return Err(self.err(format!("unexpected end of file while reading {}", what())));
         };
@@ -214,24 +259,6 @@ impl<'a> Tokens<'a> {
     }
 }
 
-/// The value of a token of 1 to 18 ASCII digits (no sign), which fits in an `i64`; `None` for
-/// any other token.
-fn plain_digits(t: &str) -> Option<i64> {
-    let b = t.as_bytes();
-    if b.is_empty() || b.len() > 18 {
-        return None;
-    }
-    let mut v: i64 = 0;
-    for &c in b {
-        let d = c.wrapping_sub(b'0');
-        if d > 9 {
-            return None;
-        }
-        v = v * 10 + i64::from(d);
-    }
-    Some(v)
-}
-
 /// First 40 characters of a token, for messages.
 pub(crate) fn shorten(t: &str) -> String {
     if t.chars().count() > 40 {
@@ -239,104 +266,6 @@ pub(crate) fn shorten(t: &str) -> String {
         format!("{s}...")
     } else {
         t.to_string()
-    }
-}
-
-/// Formats a float so that it reads back exactly (shortest round-trip form) and is accepted by C
-/// `strtod`/`fscanf` (plain decimal for moderate magnitudes, exponent form otherwise).
-pub(crate) fn fmt_f64(x: f64) -> String {
-    let mut b = Vec::with_capacity(32);
-    push_f64(&mut b, x);
-    // Only ASCII digits, signs, '.' and 'e' are written.
-    String::from_utf8(b).unwrap_or_default()
-}
-
-/// Appends [`fmt_f64`]'s text of `x` to `buf` without allocating per number: the shortest
-/// round-trip digits (ryu), laid out as Rust's `{x}` for `1e-5 <= |x| < 1e15` and zero, and
-/// as `{x:e}` otherwise: `format!`'s text, except that where two shortest digit strings are
-/// equally close to `x` the last digit may differ (both read back to `x`).
-pub(crate) fn push_f64(buf: &mut Vec<u8>, x: f64) {
-    let a = x.abs();
-    if !x.is_finite() || (1e15..1e16).contains(&a) {
-        // Not written by the mesh writers (non-finite) or where ryu's layout differs: rare.
-        use std::io::Write;
-        let _ = if x == 0.0 || (1e-5..1e15).contains(&a) {
-            write!(buf, "{x}")
-        } else {
-            write!(buf, "{x:e}")
-        };
-        return;
-    }
-    let mut r = ryu::Buffer::new();
-    let s = r.format_finite(x).as_bytes();
-    // ryu writes integral values as "3.0" and "-0.0"; Rust's Display writes "3" and "-0".
-    let s = s.strip_suffix(b".0").unwrap_or(s);
-    buf.extend_from_slice(s);
-}
-
-/// Appends the decimal text of an integer to `buf` (the same text as `{v}`).
-pub(crate) fn push_int<I: itoa::Integer>(buf: &mut Vec<u8>, v: I) {
-    buf.extend_from_slice(itoa::Buffer::new().format(v).as_bytes());
-}
-
-/// A text writer that formats numbers straight into one byte buffer and hands it to the
-/// underlying writer in large blocks (no allocation per number or per line).
-pub(crate) struct Out<'w> {
-    w: &'w mut dyn std::io::Write,
-    buf: Vec<u8>,
-}
-
-impl<'w> Out<'w> {
-    const BLOCK: usize = 1 << 16;
-
-    /// A buffered text writer over `w`.
-    pub fn new(w: &'w mut dyn std::io::Write) -> Self {
-        Out {
-            w,
-            buf: Vec::with_capacity(Self::BLOCK + 256),
-        }
-    }
-
-    /// Appends text.
-    pub fn text(&mut self, s: &str) {
-        self.buf.extend_from_slice(s.as_bytes());
-    }
-
-    /// Appends a float in [`fmt_f64`]'s form.
-    pub fn real(&mut self, x: f64) {
-        push_f64(&mut self.buf, x);
-    }
-
-    /// Appends an integer.
-    pub fn int<I: itoa::Integer>(&mut self, v: I) {
-        push_int(&mut self.buf, v);
-    }
-
-    /// Appends integers separated by single spaces.
-    pub fn ints(&mut self, vs: &[i64]) {
-        for (k, &v) in vs.iter().enumerate() {
-            if k > 0 {
-                self.buf.push(b' ');
-            }
-            push_int(&mut self.buf, v);
-        }
-    }
-
-    /// Ends a line, passing the buffer on once it holds a full block.
-    pub fn line(&mut self) -> std::io::Result<()> {
-        self.buf.push(b'\n');
-        if self.buf.len() >= Self::BLOCK {
-            self.w.write_all(&self.buf)?;
-            self.buf.clear();
-        }
-        Ok(())
-    }
-
-    /// Writes what remains.
-    pub fn finish(mut self) -> std::io::Result<()> {
-        self.w.write_all(&self.buf)?;
-        self.buf.clear();
-        Ok(())
     }
 }
 
@@ -379,101 +308,5 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("out of range"));
-    }
-
-    #[test]
-    fn floats_round_trip() {
-        for x in [
-            0.0,
-            0.1,
-            -1.0 / 3.0,
-            1e-20,
-            6.02e23,
-            f64::MIN_POSITIVE,
-            1e15,
-            123456.789,
-        ] {
-            let s = fmt_f64(x);
-            assert_eq!(s.parse::<f64>().unwrap(), x, "{s}");
-        }
-        assert_eq!(fmt_f64(1e-20), "1e-20");
-    }
-
-    /// The buffer writer gives `format!`'s layout and digit count and the same bits back, including
-    /// subnormals, extreme magnitudes, signed zero and the decimal/exponent switch points.
-    #[test]
-    fn push_f64_matches_format_and_round_trips() {
-        let reference = |x: f64| {
-            let a = x.abs();
-            if x == 0.0 || (1e-5..1e15).contains(&a) {
-                format!("{x}")
-            } else {
-                format!("{x:e}")
-            }
-        };
-        let mut xs = vec![
-            0.0,
-            -0.0,
-            1.0,
-            -3.0,
-            1e-300,
-            -1e300,
-            1e300,
-            f64::MIN_POSITIVE,
-            f64::MIN_POSITIVE / 3.0,
-            5e-324,
-            -5e-324,
-            f64::MAX,
-            f64::MIN,
-            1e-5,
-            9.999999999999999e-6,
-            1e-7,
-            1e15,
-            9.999999999999998e14,
-            1.5e15,
-            1e16,
-            123456.789,
-            0.1 + 0.2,
-        ];
-        // A deterministic spread of bit patterns over the whole finite range.
-        let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
-        for _ in 0..200_000 {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            let x = f64::from_bits(s);
-            if x.is_finite() {
-                xs.push(x);
-            }
-            // Also moderate magnitudes, where the decimal layout applies.
-            xs.push((s >> 11) as f64 / (1u64 << 53) as f64 * 10f64.powi((s % 40) as i32 - 20));
-        }
-        let mut buf = Vec::new();
-        for (x, t) in [
-            (-0.0, "-0"),
-            (1e-7, "1e-7"),
-            (1e15, "1e15"),
-            (2.5, "2.5"),
-            (3.0, "3"),
-        ] {
-            buf.clear();
-            push_f64(&mut buf, x);
-            assert_eq!(std::str::from_utf8(&buf).unwrap(), t);
-        }
-        for x in xs {
-            buf.clear();
-            push_f64(&mut buf, x);
-            let t = std::str::from_utf8(&buf).unwrap();
-            let r = reference(x);
-            assert_eq!(t.len(), r.len(), "{t} vs {r}");
-            assert_eq!(t.contains('e'), r.contains('e'), "{t} vs {r}");
-            let back: f64 = t.parse().unwrap();
-            assert_eq!(back.to_bits(), x.to_bits(), "{t}");
-        }
-        for v in [0i64, 1, -1, 42, i64::MAX, i64::MIN] {
-            buf.clear();
-            push_int(&mut buf, v);
-            assert_eq!(std::str::from_utf8(&buf).unwrap(), v.to_string());
-        }
     }
 }

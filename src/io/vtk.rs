@@ -3,7 +3,7 @@
 //! components) and cell fields, plus `tri_ref` as an integer cell field.
 
 use super::atomic::atomic_write;
-use super::tokens::fmt_f64;
+use super::textout::fmt_f64;
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::mesh::Mesh2;

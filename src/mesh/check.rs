@@ -72,6 +72,9 @@ impl Mesh2 {
 
     /// No two referenced vertices at the same coordinates.
     fn check_duplicate_points(&self, referenced: &[bool]) -> Result<()> {
+        if !self.may_have_duplicate_points(referenced) {
+            return Ok(());
+        }
         // Sort by (x, y) in the order of f64::total_cmp, as integer keys.
         let key = |x: f64| {
             let b = x.to_bits() as i64;
@@ -93,6 +96,42 @@ impl Mesh2 {
             }
         }
         Ok(())
+    }
+
+    /// Whether two referenced vertices may have equal coordinates: `false` only when no two do
+    /// (a hash table of the points, open addressing), so that the sort of
+    /// [`Mesh2::check_duplicate_points`], which names the first pair in its order, runs only
+    /// when there is a pair to name.
+    fn may_have_duplicate_points(&self, referenced: &[bool]) -> bool {
+        let n = self.points.len();
+        if n >= NONE as usize {
+            return true;
+        }
+        let size = (2 * n).next_power_of_two().max(16);
+        let mut table = vec![NONE; size];
+        // `+ 0.0` turns -0 into +0, which are equal coordinates with other bits.
+        let bits = |v: usize| {
+            let p = self.points[v];
+            ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
+        };
+        for v in (0..n).filter(|&v| referenced[v]) {
+            let (x, y) = bits(v);
+            // The top bits of a product depend on all the bits of its factors.
+            let h = (x.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ y).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+            let mut slot = (h >> (64 - size.trailing_zeros())) as usize;
+            loop {
+                let w = table[slot];
+                if w == NONE {
+                    table[slot] = v as u32;
+                    break;
+                }
+                if bits(w as usize) == (x, y) {
+                    return true;
+                }
+                slot = (slot + 1) & (size - 1);
+            }
+        }
+        false
     }
 
     /// Conformity: no boundary vertex lies strictly inside a boundary edge. Uses a uniform bucket
@@ -347,6 +386,42 @@ impl<P> TriMesh<P> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Referenced vertices at equal coordinates are reported as the first pair in (x, y) order,
+    /// the two smallest indices there; -0 and +0 are the same coordinate to the pre-test.
+    #[test]
+    fn duplicate_points_are_found() {
+        let tri = |o: DVec2, s: f64| [o, o + DVec2::new(s, 0.0), o + DVec2::new(0.0, s)];
+        let mesh = |groups: &[[DVec2; 3]]| {
+            let points: Vec<DVec2> = groups.iter().flatten().copied().collect();
+            let tris = (0..groups.len() as u32)
+                .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+                .collect();
+            Mesh2::from_triangles(points, tris).unwrap()
+        };
+        let (a, b) = (DVec2::new(2.0, 2.0), DVec2::new(5.0, 0.0));
+        // Triangles meeting at one point from three separate triangles: vertices 0, 4, 8 at a.
+        let m = mesh(&[tri(a, 1.0), tri(a - DVec2::X, 1.0), tri(a - DVec2::Y, 1.0)]);
+        assert_eq!(m.points[4], a);
+        assert_eq!(m.points[8], a);
+        let referenced = vec![true; m.points.len()];
+        assert!(m.may_have_duplicate_points(&referenced));
+        match m.check() {
+            Err(crate::error::Error::InvalidMesh(MeshDefect::DuplicateVertex {
+                first,
+                second,
+            })) => assert_eq!((first, second), (0, 4)),
+            other => panic!("expected duplicate vertices, got {other:?}"),
+        }
+        let m = mesh(&[tri(a, 1.0), tri(b, 1.0)]);
+        assert!(!m.may_have_duplicate_points(&referenced[..6]));
+        m.check().unwrap();
+        let zeros = mesh(&[
+            tri(DVec2::new(-0.0, 3.0), 1.0),
+            tri(DVec2::new(0.0, 3.0), -1.0),
+        ]);
+        assert!(zeros.may_have_duplicate_points(&referenced[..6]));
+    }
 
     /// A fan that winds twice around its vertex (seven triangles of 4π/7 each) is caught by
     /// the orientation-predicate test; one winding of the same triangles is valid.

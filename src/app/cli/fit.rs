@@ -263,18 +263,49 @@ pub fn run(a: FitArgs) -> Result<()> {
     print_report(&r, a.report.as_deref())
 }
 
-/// Lets this short-lived process reuse the memory it frees: large blocks come from one heap
-/// instead of fresh `mmap` pages (each page of those is a page fault and is zeroed by the
-/// kernel; the 201² case took about 4,900 of them, 3,500 with this), and the heap is not
-/// trimmed back. Nothing is returned to the system before the command ends.
+/// Lets this short-lived process reuse the memory it frees and take its memory in large pages:
+/// large blocks come from one heap instead of fresh `mmap` pages, the heap is not trimmed back,
+/// and it is grown once by [`HEAP_RESERVE`] bytes that are marked for transparent huge pages
+/// (where the system offers them on request), so the memory the fit touches is mapped a 2 MiB
+/// page per fault instead of a 4 KiB page per fault (each fault is zeroed memory and a trip to
+/// the kernel: the 201² case took about 3,500 faults, about 1,000 with the large pages).
+/// Nothing is returned to the system before the command ends. Best effort: where a call fails,
+/// memory is simply taken as usual.
 fn keep_freed_memory() {
-    // SAFETY: mallopt only sets allocator parameters; it is called before the threads start.
+    const HUGE: usize = 2 << 20;
+    // SAFETY: mallopt only sets allocator parameters, malloc/free pair a block, sbrk(0) only
+    // reads the end of the heap, and madvise only advises on pages of the heap (which it does
+    // not change); all before the threads start.
     unsafe {
         libc::mallopt(libc::M_ARENA_MAX, 1);
         libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 30);
         libc::mallopt(libc::M_TRIM_THRESHOLD, 1 << 30);
+        libc::mallopt(libc::M_TOP_PAD, HEAP_RESERVE as libc::c_int);
+        // A block larger than what is left of the heap makes it grow by the reserve at once.
+        // (`black_box`: the allocation is wanted for its effect on the heap alone.)
+        let before = libc::sbrk(0) as usize;
+        let block = std::hint::black_box(libc::malloc(4 * HUGE));
+        libc::free(block);
+        let end = libc::sbrk(0) as usize;
+        if block.is_null() || before == usize::MAX || end == usize::MAX || end < before {
+            return;
+        }
+        // The grown part, where the next allocations go (the block merged back into it).
+        let start = before.next_multiple_of(HUGE);
+        let stop = end / HUGE * HUGE;
+        if stop > start {
+            libc::madvise(
+                start as *mut libc::c_void,
+                stop - start,
+                libc::MADV_HUGEPAGE,
+            );
+        }
     }
 }
+
+/// The heap `anisomesh fit` reserves at its start (64 MiB; the 201² case uses about 20 MiB;
+/// beyond it the heap grows as usual).
+const HEAP_RESERVE: usize = 64 << 20;
 
 /// Checks the fitted mesh and writes it; a Medit output is formatted while `check()` runs on a
 /// second thread and is committed only when the check passes (the file is then never written).

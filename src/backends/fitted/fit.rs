@@ -25,6 +25,7 @@ use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::mesh::build::validate_elements;
 use crate::mesh::{check_p1_field, next, prev, Mesh2, NONE};
+use std::collections::HashMap;
 
 /// Label of the triangles where the level set is negative (as `mmg2d -ls`).
 pub const REF_INSIDE: i32 = 3;
@@ -216,15 +217,15 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
     let mut values = Vec::with_capacity(nb + extra);
     values.extend_from_slice(&v);
     let mut cuts: Vec<([u32; 2], f64)> = Vec::new();
-    // The new vertex of each cut edge, stored on both triangles of the edge (local edge k of
-    // triangle t at 3t + k), so each edge is cut once, in the order the triangles meet it.
-    let mut cut_of: Vec<u32> = vec![NONE; 3 * base.n_tris()];
+    // The new vertex of each cut edge by its vertices (smaller first), so each edge is cut once,
+    // in the order the triangles meet it (a map: few edges are cut).
+    let mut cut_of: HashMap<[u32; 2], u32> = HashMap::new();
     let mut cut = |t: usize, k: usize, points: &mut Vec<DVec2>, values: &mut Vec<f64>| -> u32 {
-        if cut_of[3 * t + k] != NONE {
-            return cut_of[3 * t + k];
-        }
         let [a, b] = base.edge_vertices(t, k);
         let (lo, hi) = (a.min(b), a.max(b));
+        if let Some(&m) = cut_of.get(&[lo, hi]) {
+            return m;
+        }
         let (ul, uh) = (v[lo as usize], v[hi as usize]);
         let s = ul / (ul - uh);
         let (pl, ph) = (base.points[lo as usize], base.points[hi as usize]);
@@ -232,13 +233,7 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
         values.push(0.0);
         cuts.push(([lo, hi], s));
         let m = (points.len() - 1) as u32;
-        cut_of[3 * t + k] = m;
-        let n = base.neighbours[t][k];
-        if n != NONE {
-            if let Some(j) = base.mirror_edge(t, n as usize) {
-                cut_of[3 * n as usize + j] = m;
-            }
-        }
+        cut_of.insert([lo, hi], m);
         m
     };
     let mut tris: Vec<[u32; 3]> = Vec::with_capacity(base.n_tris() + base.n_tris() / 4);
@@ -316,11 +311,39 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
     // neighbour across it (which cut that edge at the same new vertex), or is on the boundary.
     let mut neighbours = vec![[NONE; 3]; tris.len()];
     let mut edge_ref = vec![[0i32; 3]; tris.len()];
+    let not_shared = |pt: usize, n: usize, [a, b]: [u32; 2]| {
+        Error::InvalidInput(format!(
+            "interface fitting: the base triangles {pt} and {n} do not share the edge of \
+             vertices {a} and {b} (not a conforming mesh)"
+        ))
+    };
     for (t, &pt) in parent.iter().enumerate() {
         let pt = pt as usize;
         let own = first[pt] as usize..first[pt + 1] as usize;
+        let tr = tris[t];
+        if own.len() == 1 {
+            // An uncut base triangle is its one piece, with the same corners in the same order:
+            // its edge j is the base edge j, shared with a piece of the base neighbour across it.
+            for j in 0..3 {
+                let (x, y) = (tr[next(j)], tr[prev(j)]);
+                let mut r = base.edge_ref[pt][j];
+                let n = base.neighbours[pt][j];
+                if n != NONE {
+                    let n = n as usize;
+                    let Some((u, _)) = find_edge(first[n] as usize..first[n + 1] as usize, y, x)
+                    else {
+                        return Err(not_shared(pt, n, [x, y]));
+                    };
+                    neighbours[t][j] = u as u32;
+                    if tri_ref[u] != tri_ref[t] {
+                        r = REF_INTERFACE;
+                    }
+                }
+                edge_ref[t][j] = r;
+            }
+            continue;
+        }
         for j in 0..3 {
-            let tr = tris[t];
             let (x, y) = (tr[next(j)], tr[prev(j)]);
             let mut r = 0;
             let mut nbr = find_edge(own.clone(), y, x);
@@ -334,10 +357,7 @@ pub fn fit(base: &Mesh2, u: &[f64], opts: &FitOptions) -> Result<FittedMesh> {
                             let n = n as usize;
                             nbr = find_edge(first[n] as usize..first[n + 1] as usize, y, x);
                             if nbr.is_none() {
-                                return Err(Error::InvalidInput(format!(
-                                    "interface fitting: the base triangles {pt} and {n} do not \
-                                     share the edge of vertices {a} and {b} (not a conforming mesh)"
-                                )));
+                                return Err(not_shared(pt, n, [a, b]));
                             }
                         }
                         break;

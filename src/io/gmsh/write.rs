@@ -7,7 +7,7 @@ use super::PhysicalName;
 use crate::error::Result;
 use crate::geom::DVec2;
 use crate::io::atomic::atomic_write;
-use crate::io::tokens::fmt_f64;
+use crate::io::textout::fmt_f64;
 use crate::mesh::{Mesh2, NONE};
 use std::collections::BTreeMap;
 use std::io::Write;
