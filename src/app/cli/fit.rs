@@ -270,7 +270,8 @@ pub fn run(a: FitArgs) -> Result<()> {
 /// page per fault instead of a 4 KiB page per fault (each fault is zeroed memory and a trip to
 /// the kernel: the 201² case took about 3,500 faults, about 1,000 with the large pages).
 /// Nothing is returned to the system before the command ends. Best effort: where a call fails,
-/// memory is simply taken as usual.
+/// memory is simply taken as usual; on systems other than Linux with glibc, it does nothing.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
 fn keep_freed_memory() {
     const HUGE: usize = 2 << 20;
     // SAFETY: mallopt only sets allocator parameters, malloc/free pair a block, sbrk(0) only
@@ -303,8 +304,13 @@ fn keep_freed_memory() {
     }
 }
 
+/// Outside Linux with glibc, memory is taken as usual.
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+fn keep_freed_memory() {}
+
 /// The heap `anisomesh fit` reserves at its start (64 MiB; the 201² case uses about 20 MiB;
 /// beyond it the heap grows as usual).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
 const HEAP_RESERVE: usize = 64 << 20;
 
 /// Checks the fitted mesh and writes it; a Medit output is formatted while `check()` runs on a
