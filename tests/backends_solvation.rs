@@ -226,10 +226,55 @@ fn free_energy_decreases_monotonically_along_every_relaxation() {
     }
 }
 
+/// Two rods of 9 particles `0.5σ` apart along each rod (001 Figs. 7.7–7.8): below the upper
+/// bound of the bistable range the loose wrap keeps its solvent-free gap (one component) while
+/// the tight wrap ends in two; beyond it the solvent front enters the gap from both ends, the
+/// fronts meet and the loose wrap also ends in two components with the tight wrap's free
+/// energy. The total free energy decreases along each relaxation, through the pinch-off.
+#[test]
+fn rods_loose_wrap_opens_beyond_the_upper_bound() {
+    let n = RODS_TEST_N;
+    let o = RelaxOptions::default();
+    let mut finals = Vec::new();
+    for (d, wrap, components) in [
+        (3.0, Wrap::Loose, 1),
+        (3.0, Wrap::Tight, 2),
+        (4.4, Wrap::Loose, 2),
+        (4.4, Wrap::Tight, 2),
+    ] {
+        let sys = SystemKind::Rods { d, spacing: 0.5 }.system().unwrap();
+        let (base, phi) = setup(&sys, wrap, false, n).unwrap();
+        let rel = relax(&base, 1.0 / n as f64, &sys, phi, &o).unwrap();
+        let e = rel.final_energy();
+        let (smooth, change) = relative_increases(&rel);
+        println!(
+            "rods d = {d} sigma {wrap:?} n = {n}: {} steps, G {:.6e}, {} component(s), largest \
+             increase / scale {smooth:.1e} (at a topology change {change:.1e})",
+            rel.records.len() - 1,
+            e.total,
+            e.components
+        );
+        assert_eq!(e.components, components, "d = {d} {wrap:?}");
+        assert!(e.total < rel.records[0].energy.total);
+        assert!(smooth <= 1e-4, "d = {d} {wrap:?}: {smooth}");
+        assert!(change <= 2e-2, "d = {d} {wrap:?}: {change}");
+        finals.push(e.total);
+    }
+    // Two different minima at 3σ, the dewetted one higher (001 §7); one minimum at 4.4σ.
+    assert!(finals[0] > finals[1] + 1e-5, "{finals:?}");
+    assert!(
+        (finals[2] - finals[3]).abs() <= 1e-3 * finals[3].abs(),
+        "{finals:?}"
+    );
+}
+
+/// Cells per side of the grid of the rod test.
+const RODS_TEST_N: usize = 48;
+
 #[test]
 fn bad_input_gets_typed_errors() {
     for d in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        assert!(SystemKind::Rods { d }.system().is_err(), "d = {d}");
+        assert!(SystemKind::rods(d).system().is_err(), "d = {d}");
     }
     let mut sys = one_particle(1e-4);
     sys.particles[0].sigma = f64::NAN;

@@ -2,7 +2,7 @@
 //! interface-fitted mesh (001 §7).
 
 use crate::app::repro::solvation::{run, sweep, write, write_sweep};
-use anisomesh::backends::fitted::solvation::{RelaxOptions, SystemKind, Wrap};
+use anisomesh::backends::fitted::solvation::{RelaxOptions, SystemKind, Wrap, ROD_SPACING};
 use anisomesh::backends::fitted::ExtensionKind;
 use anisomesh::error::{Error, Result};
 use clap::Args;
@@ -18,6 +18,9 @@ pub struct SolvationArgs {
     /// Distance between the rods in units of sigma (rods; default 3.2).
     #[arg(long)]
     d: Option<f64>,
+    /// Spacing of the 9 particles along each rod in units of sigma (rods; 001 does not give it).
+    #[arg(long, default_value_t = ROD_SPACING)]
+    spacing: f64,
     /// Initial surface: loose, tight or both (default both).
     #[arg(long, default_value = "both")]
     wrap: String,
@@ -30,6 +33,10 @@ pub struct SolvationArgs {
     /// Steady state: the length-weighted mean |V_n| on the interface below this.
     #[arg(long, default_value_t = 2e-5)]
     tol: f64,
+    /// Steady state also when G changed by less than this times |G| over the last 50 steps
+    /// (0: only the |V_n| test).
+    #[arg(long, default_value_t = 1e-6)]
+    energy_rtol: f64,
     /// Courant number of the adaptive time step.
     #[arg(long, default_value_t = 0.5)]
     cfl: f64,
@@ -69,6 +76,7 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
     let opts = RelaxOptions {
         cfl: a.cfl,
         tol: a.tol,
+        energy_rtol: a.energy_rtol,
         max_steps: a.steps,
         stabilise: a.stabilise,
         curvature_steps: a.curvature_steps,
@@ -88,6 +96,7 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
         "ring" => SystemKind::Ring,
         "rods" => SystemKind::Rods {
             d: positive_d(a.d.unwrap_or(3.2))?,
+            spacing: a.spacing,
         },
         s => {
             return Err(Error::InvalidInput(format!(
@@ -124,7 +133,7 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
             None => (0..=10).map(|k| 1.6 + 0.4 * k as f64).collect(),
         };
         let n = a.n.unwrap_or(64);
-        let s = sweep(&ds, n, &opts)?;
+        let s = sweep(&ds, a.spacing, n, &opts)?;
         println!("two rods, {n} x {n} cells: relaxed free energy G against d (001 Fig. 7.8)");
         println!(
             "{:>6} {:>12} {:>6} {:>6} {:>12} {:>6} {:>6} {:>9}",
@@ -196,7 +205,7 @@ pub fn run_cli(a: SolvationArgs) -> Result<()> {
         );
     }
     let name = match kind {
-        SystemKind::Rods { d } => format!("rods_d{d}"),
+        SystemKind::Rods { d, .. } => format!("rods_d{d}"),
         k => k.name().to_string(),
     };
     write(&a.output, &name, &rep)?;

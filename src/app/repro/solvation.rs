@@ -124,7 +124,7 @@ pub fn run(kind: SystemKind, wraps: &[Wrap], n: usize, opts: &RelaxOptions) -> R
     Ok(Report {
         system: kind.name().into(),
         d: match kind {
-            SystemKind::Rods { d } => Some(d),
+            SystemKind::Rods { d, .. } => Some(d),
             _ => None,
         },
         n,
@@ -273,6 +273,8 @@ pub struct SweepRow {
 #[derive(Debug, Clone, Serialize)]
 pub struct Sweep {
     pub n: usize,
+    /// Spacing of the particles along a rod, in units of sigma.
+    pub spacing: f64,
     pub rows: Vec<SweepRow>,
     /// Smallest and largest `d` of the sweep (units of sigma) at which the loose and tight
     /// relaxations end with different numbers of components.
@@ -280,14 +282,14 @@ pub struct Sweep {
 }
 
 /// Relaxes the rods at every `d` from both wraps (in parallel).
-pub fn sweep(ds: &[f64], n: usize, opts: &RelaxOptions) -> Result<Sweep> {
+pub fn sweep(ds: &[f64], spacing: f64, n: usize, opts: &RelaxOptions) -> Result<Sweep> {
     let jobs: Vec<(f64, Wrap)> = ds
         .iter()
         .flat_map(|&d| [(d, Wrap::Loose), (d, Wrap::Tight)])
         .collect();
     let runs = jobs
         .par_iter()
-        .map(|&(d, w)| run_one(SystemKind::Rods { d }, w, n, opts))
+        .map(|&(d, w)| run_one(SystemKind::Rods { d, spacing }, w, n, opts))
         .collect::<Result<Vec<Run>>>()?;
     let rows: Vec<SweepRow> = ds
         .iter()
@@ -313,7 +315,12 @@ pub fn sweep(ds: &[f64], n: usize, opts: &RelaxOptions) -> Result<Sweep> {
         (Some(&a), Some(&b)) => Some((a, b)),
         _ => None,
     };
-    Ok(Sweep { n, rows, bistable })
+    Ok(Sweep {
+        n,
+        spacing,
+        rows,
+        bistable,
+    })
 }
 
 /// Writes `solvation_sweep.json`, `solvation_sweep.csv` and `figures/solvation_rods_sweep.png`

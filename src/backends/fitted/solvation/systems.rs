@@ -7,8 +7,11 @@
 //!   particles and the model take the two-rod values below.
 //! - **rods**: 9 particles evenly on each of two parallel lines a distance `d` apart
 //!   (001 Figs. 7.7–7.8), `γ = 0.00035`, `ρ_w = 0.5`, `ε = 0.0062`, `σ = 0.1`. 001 does not give
-//!   the spacing along a rod; here it is [`ROD_SPACING`]` σ`, the rods vertical and centred in
-//!   the box.
+//!   the spacing along a rod; by default it is [`ROD_SPACING`]` σ = 0.05` (the rods vertical
+//!   and centred in the box, from y = 0.3 to 0.7, on the 0.05 grid of 001's other particle
+//!   positions), [`SystemKind::Rods`] takes any spacing. The spacing sets the van der Waals
+//!   pull per unit length of a rod, and with it the upper end of the range of `d` in which the
+//!   two wraps end in different minima (docs/solvation.md).
 //!
 //! **Wraps** (001 §7): a loose wrap is a large surface around all particles — here the convex
 //! hull of the discs of radius `1.5 σ_i` about the particles ("at least 1.5σ from the i-th
@@ -22,8 +25,8 @@ use crate::geom::DVec2;
 
 /// Radius of the ring of 8 particles.
 pub const RING_RADIUS: f64 = 0.25;
-/// Spacing of the particles along a rod, in units of `σ`.
-pub const ROD_SPACING: f64 = 0.7;
+/// Default spacing of the particles along a rod, in units of `σ` (001 does not give it).
+pub const ROD_SPACING: f64 = 0.5;
 /// Particles per rod.
 pub const ROD_PARTICLES: usize = 9;
 /// Distance of a loose wrap from the particles, in units of each particle's `σ`.
@@ -51,6 +54,8 @@ pub enum SystemKind {
     Rods {
         /// Distance between the rods in units of `σ = 0.1`.
         d: f64,
+        /// Spacing of the particles along a rod in units of `σ` ([`ROD_SPACING`] by default).
+        spacing: f64,
     },
 }
 
@@ -62,6 +67,14 @@ fn unit_box() -> (DVec2, DVec2) {
 }
 
 impl SystemKind {
+    /// The two rods `d σ` apart with the default spacing [`ROD_SPACING`].
+    pub fn rods(d: f64) -> Self {
+        SystemKind::Rods {
+            d,
+            spacing: ROD_SPACING,
+        }
+    }
+
     /// The particles and parameters. Errors: a rod distance that is not finite and positive,
     /// or rods that do not fit in the box.
     pub fn system(&self) -> Result<System> {
@@ -106,17 +119,23 @@ impl SystemKind {
                 params: rod_params,
                 domain: unit_box(),
             },
-            SystemKind::Rods { d } => {
+            SystemKind::Rods { d, spacing } => {
                 if !(d.is_finite() && d > 0.0) {
                     return Err(Error::InvalidInput(format!(
                         "solvation: the rod distance d must be finite and positive (got {d})"
+                    )));
+                }
+                if !(spacing.is_finite() && spacing > 0.0) {
+                    return Err(Error::InvalidInput(format!(
+                        "solvation: the spacing along a rod must be finite and positive (got \
+                         {spacing})"
                     )));
                 }
                 let half = 0.5 * d * ROD_SIGMA;
                 let mut particles = Vec::with_capacity(2 * ROD_PARTICLES);
                 for x in [0.5 - half, 0.5 + half] {
                     for k in 0..ROD_PARTICLES {
-                        let y = 0.5 + (k as f64 - 4.0) * ROD_SPACING * ROD_SIGMA;
+                        let y = 0.5 + (k as f64 - 4.0) * spacing * ROD_SIGMA;
                         particles.push(particle(x, y, ROD_SIGMA, ROD_EPSILON));
                     }
                 }
