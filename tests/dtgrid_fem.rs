@@ -80,12 +80,16 @@ fn mcf_runs(o: &McfOptions, tau_of_h: impl Fn(f64) -> f64, ns: &[usize]) -> Vec<
 }
 
 #[test]
-fn mcf_with_inner_iterations_converges() {
-    // 000 Table 2.2 (j = 2, τ = h²): 0.0128, 0.0028; measured 0.01045, 0.00361 (order 1.53).
-    let e = mcf_errors(2, 5, |h| h * h, &[17, 33]);
-    let order = (e[0] / e[1]).log2();
-    assert!(order > 1.45, "order {order} from {e:?}");
-    assert!(e[1] < 2.0 * 0.002848, "{e:?}");
+fn mcf_with_inner_iterations_converges_at_second_order() {
+    // 000 Table 2.2 (τ = h², 17³ and 33³): j = 2 0.0128, 0.0028; j = 4 0.0076, 0.0018.
+    // Measured: j = 2 9.65e-3, 2.78e-3 (order 1.79, 2.39 on to 65³); j = 4 7.69e-3, 2.50e-3
+    // (order 1.62, 1.82 on to 65³).
+    for (j, min_order, paper) in [(2, 1.7, 0.002848), (4, 1.5, 0.001830)] {
+        let e = mcf_errors(j, 5, |h| h * h, &[17, 33]);
+        let order = (e[0] / e[1]).log2();
+        assert!(order > min_order, "j = {j}: order {order} from {e:?}");
+        assert!(e[1] < 1.5 * paper, "j = {j}: {e:?}");
+    }
 }
 
 #[test]

@@ -44,6 +44,9 @@ pub struct HeatArgs {
     /// Table on the grids 17³…65³ only.
     #[arg(long)]
     quick: bool,
+    /// The finest grid of the table (17, 33, 65, 129, 257 or 513 nodes per side).
+    #[arg(long, default_value_t = 129)]
+    max_n: usize,
     /// One run on this surface through the band back end: sphere, torus or star, in (−½, ½)³
     /// (writes the zero level as .vtu and pictures).
     #[arg(long, value_parser = ["sphere", "torus", "star"], conflicts_with = "expr")]
@@ -83,6 +86,9 @@ pub struct McfArgs {
     /// Table on the grids 17³…65³ only.
     #[arg(long)]
     quick: bool,
+    /// The finest grid of the table (17, 33, 65, 129, 257 or 513 nodes per side).
+    #[arg(long, default_value_t = 129)]
+    max_n: usize,
     /// One run on this surface through the band back end: sphere, torus or star, in (−½, ½)³
     /// (writes the zero level as .vtu and pictures).
     #[arg(long, value_parser = ["sphere", "torus", "star"], conflicts_with = "expr")]
@@ -131,6 +137,19 @@ fn shape_run<'a>(
     }
 }
 
+/// The grids of a table: 17³ up to `max_n`³ (65³ with `quick`).
+/// Error: [`anisomesh::Error::InvalidInput`] when `max_n` is not one of the paper's grids.
+fn table_grids(quick: bool, max_n: usize) -> Result<Vec<usize>> {
+    const GRIDS: [usize; 6] = [17, 33, 65, 129, 257, 513];
+    let max_n = if quick { 65 } else { max_n };
+    if !GRIDS.contains(&max_n) {
+        return Err(anisomesh::Error::InvalidInput(format!(
+            "--max-n {max_n}: one of 17, 33, 65, 129, 257, 513"
+        )));
+    }
+    Ok(GRIDS.iter().copied().filter(|&n| n <= max_n).collect())
+}
+
 /// Runs a `dtgrid` subcommand.
 pub fn run(cmd: DtGrid) -> Result<()> {
     match cmd {
@@ -167,11 +186,7 @@ pub fn run(cmd: DtGrid) -> Result<()> {
                     t_end: a.t_end,
                     ..HeatOptions::paper(n, a.band, Bc::parse(&a.bc)?)
                 })?],
-                None => repro::heat_table(if a.quick {
-                    &[17, 33, 65]
-                } else {
-                    &[17, 33, 65, 129]
-                })?,
+                None => repro::heat_table(&table_grids(a.quick, a.max_n)?)?,
             };
             println!(
                 "heat equation on the sphere r = 1/3, t = {} (000 Table 2.1)",
@@ -227,11 +242,7 @@ pub fn run(cmd: DtGrid) -> Result<()> {
                     let block = repro::paper_block(h, tau, a.t_end, &o);
                     vec![repro::mcf_row(n, tau, a.t_end, &o, block)?]
                 }
-                None => repro::mcf_table(if a.quick {
-                    &[17, 33, 65]
-                } else {
-                    &[17, 33, 65, 129]
-                })?,
+                None => repro::mcf_table(&table_grids(a.quick, a.max_n)?)?,
             };
             println!(
                 "sphere r0 = 0.25 by mean curvature to t = {} (000 Table 2.2)",
