@@ -495,7 +495,7 @@ fn the_metric_command_writes_the_metric_adapt_uses() {
         };
         let lm = anisomesh::adapt::LevelSetMetric {
             eps: eps.parse().unwrap(),
-            band: 5.0 * eps.parse::<f64>().unwrap(),
+            // In 3D the band keeps its ratio to hmin (a length), not to eps.
             ..Run3Options::default().metric
         };
         let beta = hgrad.map(|g| g.parse().unwrap());

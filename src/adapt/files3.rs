@@ -33,6 +33,7 @@
 //!   The intersection keeps every size of the exact metric (a band of eq. (6) narrower than
 //!   the previous mesh's elements is never missed), and adds the gradation's smaller sizes.
 
+use super::tet::run::Seen3;
 use super::{level_set_metric3, run3, Adapted3, LevelSetMetric, Run3Options, Target3};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
@@ -247,9 +248,13 @@ pub fn shape_metric3(
     hgrad: Option<f64>,
 ) -> Result<Vec<Sym3>> {
     lm.validate()?;
+    let seen = Seen3::new(shape, bounding_diameter(points));
     let mut m: Vec<Sym3> = points
         .par_iter()
-        .map(|&p| level_set_metric3(lm, shape.distance(p), shape.gradient(p), &shape.hessian(p)))
+        .map(|&p| {
+            let (u, g, h) = seen.jet(p);
+            level_set_metric3(lm, u, g, &h)
+        })
         .collect();
     for (v, x) in m.iter().enumerate() {
         SymTensor::validate(x, v)?;
@@ -258,6 +263,22 @@ pub fn shape_metric3(
         gradate_tets(points, tets, &mut m, beta)?;
     }
     Ok(m)
+}
+
+/// The length of the diagonal of the bounding box of `points` (1 for fewer than two points).
+fn bounding_diameter(points: &[DVec3]) -> f64 {
+    let lo = points
+        .iter()
+        .fold(DVec3::splat(f64::INFINITY), |a, &p| a.min(p));
+    let hi = points
+        .iter()
+        .fold(DVec3::splat(f64::NEG_INFINITY), |a, &p| a.max(p));
+    let d = (hi - lo).length();
+    if d.is_finite() && d > 0.0 {
+        d
+    } else {
+        1.0
+    }
 }
 
 /// Rounds of at most this many adaptations in [`run3_graded`].
@@ -276,9 +297,12 @@ pub fn run3_graded(
     let clock = std::time::Instant::now();
     let lm = opts.metric;
     lm.validate()?;
-    let exact = move |p: DVec3| {
-        level_set_metric3(&lm, shape.distance(p), shape.gradient(p), &shape.hessian(p))
+    let seen = Seen3::new(shape, (opts.hi - opts.lo).length());
+    let exact = |p: DVec3| {
+        let (u, g, h) = seen.jet(p);
+        level_set_metric3(&lm, u, g, &h)
     };
+    let shape = seen.shape();
     let mut mesh = match start {
         Some(m) => m.clone(),
         None => Mesh3::kuhn_box(opts.lo, opts.hi, [opts.cells; 3])?,

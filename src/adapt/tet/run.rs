@@ -15,7 +15,7 @@ use crate::adapt::cycle::run_cycles;
 use crate::adapt::{AdaptOptions, AdaptReport, LevelSetMetric};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
-use crate::levelset::{enclosed_measure, interface_measure, Shape};
+use crate::levelset::{enclosed_measure, interface_measure, Normalized, Shape};
 use crate::mesh3::{EditMesh3, Mesh3};
 use crate::metric::{geometric_metric, Sym3};
 
@@ -98,10 +98,50 @@ pub struct Adapted3 {
     pub mesh: Mesh3,
     /// The vertex metric.
     pub metric: Vec<Sym3>,
-    /// The shape's signed distance at the vertices (shape targets).
+    /// The shape's signed distance at the vertices (shape targets; for a level-set function that
+    /// is not a distance, its first-order distance `u/|∇u|`).
     pub level_set: Option<Vec<f64>>,
     /// The numbers.
     pub report: Report3,
+}
+
+/// A shape as 004 eq. (6) sees it: itself when it is a signed distance
+/// ([`Shape::is_distance`]), otherwise its first-order distance `u/|∇u|`, unit normal and shape
+/// operator ([`Normalized`]), so that the band, `hmin` and the curvature sizes are lengths and
+/// `u` and `c u` give the same mesh (the 2D [`crate::adapt::run`] does the same).
+pub enum Seen3<'a> {
+    /// A signed distance, used as it is.
+    Distance(&'a dyn Shape<DVec3>),
+    /// A level-set function that is not a distance, normalised.
+    Normalized(Normalized<&'a dyn Shape<DVec3>>),
+}
+
+impl<'a> Seen3<'a> {
+    /// `shape` as eq. (6) sees it; `cap` bounds `|u/|∇u||` where `∇u` vanishes (the domain's
+    /// diameter).
+    pub fn new(shape: &'a dyn Shape<DVec3>, cap: f64) -> Seen3<'a> {
+        if shape.is_distance() {
+            Seen3::Distance(shape)
+        } else {
+            Seen3::Normalized(Normalized { inner: shape, cap })
+        }
+    }
+
+    /// The (first-order) signed distance, its gradient and Hessian at `p`.
+    pub fn jet(&self, p: DVec3) -> (f64, DVec3, Sym3) {
+        match self {
+            Seen3::Distance(s) => (s.distance(p), s.gradient(p), s.hessian(p)),
+            Seen3::Normalized(n) => n.parts3(p),
+        }
+    }
+
+    /// The shape whose values are the level set of the adapted mesh.
+    pub fn shape(&self) -> &dyn Shape<DVec3> {
+        match self {
+            Seen3::Distance(s) => *s,
+            Seen3::Normalized(n) => n,
+        }
+    }
 }
 
 /// 004 eq. (6) in 3D with the band and bounds of `lm` ([`LevelSetMetric`]): the bounded
@@ -125,6 +165,63 @@ pub fn level_set_metric3(lm: &LevelSetMetric, u: f64, grad: DVec3, hess: &Sym3) 
         });
     }
     m
+}
+
+/// The scale of the continuation's coarsened metric, shared with the metric function (a
+/// multiple of 1 stored as the bits of an `f64`).
+#[derive(Debug)]
+struct Scale(std::sync::atomic::AtomicU64);
+
+impl Default for Scale {
+    fn default() -> Self {
+        Scale(std::sync::atomic::AtomicU64::new(1f64.to_bits()))
+    }
+}
+
+impl Scale {
+    fn get(&self) -> f64 {
+        f64::from_bits(self.0.load(std::sync::atomic::Ordering::Relaxed))
+    }
+    fn set(&self, s: f64) {
+        self.0
+            .store(s.to_bits(), std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+/// `lm` with `hmin` and the band multiplied by `s` (`hmin` at most `hmax`): the same interface
+/// seen `s` times coarser across, the start of one continuation stage.
+fn coarsened(lm: &LevelSetMetric, s: f64) -> LevelSetMetric {
+    if s == 1.0 {
+        return *lm;
+    }
+    LevelSetMetric {
+        hmin: (lm.hmin * s).min(lm.hmax),
+        band: lm.band * s,
+        ..*lm
+    }
+}
+
+/// The number of continuation stages before the target metric: `hmin` doubled until it
+/// reaches `hmax / 2`, at most four times.
+fn continuation_stages(lm: &LevelSetMetric) -> u32 {
+    let mut k = 0;
+    while k < 4 && lm.hmin * f64::from(1u32 << (k + 1)) <= 0.5 * lm.hmax {
+        k += 1;
+    }
+    k
+}
+
+/// Re-evaluates the metric at every vertex of `ctx` from `source` (after the continuation's
+/// scale changed), and has every operator look at every vertex again.
+fn refresh_metric(ctx: &mut Ctx<'_>, source: MetricFn3<'_>) -> Result<()> {
+    use rayon::prelude::*;
+    let metric: Vec<Sym3> = ctx.mesh.points.par_iter().map(|&p| source(p)).collect();
+    for (v, m) in metric.iter().enumerate() {
+        m.validate(v)?;
+    }
+    ctx.metric = metric;
+    ctx.last = [0; 5];
+    Ok(())
 }
 
 /// Up to three rounds of the quality sweep ([`super::sweep`]), each followed by a swap and a
@@ -175,14 +272,21 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
         ));
     }
     let lm = opts.metric;
+    let seen;
+    let coarsening = Scale::default();
     let shape_metric;
     let (source, shape): (MetricFn3<'_>, Option<&dyn Shape<DVec3>>) = match target {
         Target3::Metric(f) => (f, None),
         Target3::Shape(s) => {
             lm.validate()?;
-            shape_metric =
-                move |p: DVec3| level_set_metric3(&lm, s.distance(p), s.gradient(p), &s.hessian(p));
-            (&shape_metric, Some(s))
+            seen = Seen3::new(s, (opts.hi - opts.lo).length());
+            let seen = &seen;
+            let scale = &coarsening;
+            shape_metric = move |p: DVec3| {
+                let (u, g, h) = seen.jet(p);
+                level_set_metric3(&coarsened(&lm, scale.get()), u, g, &h)
+            };
+            (&shape_metric, Some(seen.shape()))
         }
     };
     let mesh = match start {
@@ -198,6 +302,17 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     ctx.l_min = opts.adapt.l_min;
     ctx.l_max = opts.adapt.l_max;
     let mut rep = AdaptReport::default();
+    if shape.is_some() {
+        // Continuation: the eq. (6) metric with hmin and the band scaled by 2^k, k = K, …, 1,
+        // before the metric itself (module documentation).
+        for k in (1..=continuation_stages(&lm)).rev() {
+            coarsening.set((1u64 << k) as f64);
+            refresh_metric(&mut ctx, source)?;
+            run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
+        }
+        coarsening.set(1.0);
+        refresh_metric(&mut ctx, source)?;
+    }
     run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
     final_sweep(&mut ctx, &opts.adapt, &mut rep)?;
     super::conform::polish(&mut ctx, &opts.adapt, &mut rep)?;

@@ -94,7 +94,7 @@ pub fn run(a: AdaptArgs) -> Result<()> {
     let (metric3, iso) = (a.metric.clone(), a.iso);
     let metric3 = move |b| LevelSetMetric {
         isotropic: iso,
-        ..metric3.apply(b)
+        ..metric3.apply_tet(b)
     };
     let input = match &a.input {
         Some(p) => Some(read_input_mesh(p, a.ridge_angle)?),

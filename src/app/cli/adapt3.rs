@@ -17,12 +17,16 @@ use anisomesh::metric::Sym3;
 use anisomesh::{Error, Result};
 use std::path::Path;
 
-/// A level-set expression in x, y, z as a 3D shape (derivatives by differences).
+/// A level-set expression in x, y, z as a 3D shape (derivatives by differences; not a
+/// distance, so the adaptation sees it through `u/|∇u|`).
 struct ExprShape3(Expr);
 
 impl Shape<DVec3> for ExprShape3 {
     fn distance(&self, p: DVec3) -> f64 {
         self.0.eval3(p)
+    }
+    fn is_distance(&self) -> bool {
+        false
     }
     fn name(&self) -> String {
         "expr".into()

@@ -7,14 +7,14 @@
 //! between the tetrahedra labelled `IN` and `OUT` with `--regions` (what `mmg3d_O3 -ls`
 //! writes: `--regions 3,2`, taken by default when the mesh has both labels); otherwise the P1
 //! zero level of the exact shape's level set evaluated at the vertices (what `adapt --dim 3`
-//! adapts).
+//! adapts: for the star, whose `u = |x| − ρ` is not a distance, `u/|∇u|`).
 
 use anisomesh::geom::DVec3;
 use anisomesh::io;
 use anisomesh::levelset::compare_radial::{
     compare_to_radial, interface_triangles, zero_level_triangles, RadialComparison, RadialSurface,
 };
-use anisomesh::levelset::{Shape, StarSurface};
+use anisomesh::levelset::{Normalized, Shape, StarSurface};
 use anisomesh::{Error, Result};
 use std::path::Path;
 
@@ -61,7 +61,15 @@ pub fn run(a: &ShapeMeasure<'_>) -> Result<()> {
                 rho: &star_rho,
                 volume: star.exact_area().unwrap_or(f64::NAN),
             },
-            Box::new(move |p| star.distance(p)),
+            // What `adapt --dim 3` adapts: the star's u seen as the first-order distance
+            // u/|∇u| (the same zero level; its P1 interpolant is the adapted mesh's).
+            Box::new(move |p| {
+                Normalized {
+                    inner: star,
+                    cap: 4.0,
+                }
+                .distance(p)
+            }),
         ),
         "sphere" => (
             RadialSurface {

@@ -164,7 +164,7 @@ pub fn run(a: MetricCmdArgs) -> Result<()> {
                     "metric: --target-vertices is 2D only".into(),
                 ));
             }
-            let lm3 = a.metric.apply(Run3Options::default().metric);
+            let lm3 = a.metric.apply_tet(Run3Options::default().metric);
             let m = metric3(points, cells, &u, a.expr.as_deref(), &lm3, a.hgrad)?;
             io::write_sol(&a.output, &Sol::metric3(&m))?;
             println!("metric of {}: {}", a.input.display(), mesh_kind(&a));

@@ -18,7 +18,7 @@ pub struct MetricArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub hmax: Option<f64>,
     /// Half-width of the band around the zero level where eq. (6) applies; sizes grow outside
-    /// it [default: 5 eps].
+    /// it [default: 5 eps; with --dim 3, hmin / 2].
     #[arg(long, allow_negative_numbers = true)]
     pub band: Option<f64>,
     /// Growth rate of the sizes outside the band [default: 1].
@@ -37,6 +37,17 @@ impl MetricArgs {
             band: self.band.unwrap_or(base.band / base.eps * eps),
             grade: self.grade.unwrap_or(base.grade),
             ..base
+        }
+    }
+
+    /// `base` with the given flags applied, for tetrahedra: without `--band`, the band keeps its
+    /// ratio to hmin (the band is a length, a few normal sizes thick, whatever eps: the 3D
+    /// adaptation measures it in distance, `u/|∇u|` for a level set that is not a distance).
+    pub fn apply_tet(&self, base: LevelSetMetric) -> LevelSetMetric {
+        let hmin = self.hmin.unwrap_or(base.hmin);
+        LevelSetMetric {
+            band: self.band.unwrap_or(base.band / base.hmin * hmin),
+            ..self.apply(base)
         }
     }
 
