@@ -15,7 +15,6 @@ use super::band::{Band, GridCoord};
 use super::lattice::{crosses, Lattice, C3};
 use super::surface::closest_on_triangle;
 use crate::geom::DVec3;
-use crate::levelset::TriangleSurface;
 use rayon::prelude::*;
 
 /// The Kuhn tetrahedra of a cube: corners `0, 2^a, 2^a + 2^b, 7` for each axis order `(a, b)`.
@@ -44,16 +43,87 @@ pub enum Keep {
 
 /// The triangles of the zero level with the corner values of their cells.
 struct Level {
-    surface: TriangleSurface,
+    /// The triangles' corners, oriented with the negative side behind them.
+    tris: Vec<[DVec3; 3]>,
     /// Per triangle: its cell.
     tri_cell: Vec<u32>,
     /// Per crossed cell: lowest corner, corner values.
     cells: Vec<(C3, [f64; 8])>,
 }
 
+/// Appends the zero level of the linear interpolant of `values` on the tetrahedron `points` to
+/// `out`, oriented with the negative side behind (the triangles of
+/// [`TriangleSurface::add_tet_zero_level`], without allocating).
+///
+/// [`TriangleSurface::add_tet_zero_level`]: crate::levelset::TriangleSurface::add_tet_zero_level
+fn tet_zero_level(points: [DVec3; 4], values: [f64; 4], out: &mut Vec<[DVec3; 3]>) {
+    let (mut inside, mut outside) = ([0usize; 4], [0usize; 4]);
+    let (mut ni, mut no) = (0, 0);
+    for (i, v) in values.iter().enumerate() {
+        if *v < 0.0 {
+            inside[ni] = i;
+            ni += 1;
+        } else {
+            outside[no] = i;
+            no += 1;
+        }
+    }
+    let cut = |a: usize, b: usize| {
+        let (ua, ub) = (values[a], values[b]);
+        let s = ua / (ua - ub);
+        points[a] + s * (points[b] - points[a])
+    };
+    let mut poly = [DVec3::ZERO; 4];
+    let np = match (ni, no) {
+        (1, 3) => {
+            for (q, &o) in poly.iter_mut().zip(&outside[..3]) {
+                *q = cut(inside[0], o);
+            }
+            3
+        }
+        (3, 1) => {
+            for (q, &i) in poly.iter_mut().zip(&inside[..3]) {
+                *q = cut(i, outside[0]);
+            }
+            3
+        }
+        (2, 2) => {
+            poly = [
+                cut(inside[0], outside[0]),
+                cut(inside[0], outside[1]),
+                cut(inside[1], outside[1]),
+                cut(inside[1], outside[0]),
+            ];
+            4
+        }
+        _ => return,
+    };
+    let centre =
+        |idx: &[usize]| idx.iter().fold(DVec3::ZERO, |s, &i| s + points[i]) / idx.len() as f64;
+    let (centre_in, centre_out) = (centre(&inside[..ni]), centre(&outside[..no]));
+    let n = (poly[1] - poly[0]).cross(poly[2] - poly[0])
+        + if np == 4 {
+            (poly[2] - poly[0]).cross(poly[3] - poly[0])
+        } else {
+            DVec3::ZERO
+        };
+    let flip = n.dot(centre_out - centre_in) < 0.0;
+    let mut push = |a: usize, b: usize, c: usize| {
+        out.push(if flip {
+            [poly[a], poly[c], poly[b]]
+        } else {
+            [poly[a], poly[b], poly[c]]
+        });
+    };
+    push(0, 1, 2);
+    if np == 4 {
+        push(0, 2, 3);
+    }
+}
+
 fn level<B: Band<Coord = C3>>(lat: &Lattice, band: &B, phi: &[f64]) -> Level {
     let mut l = Level {
-        surface: TriangleSurface::default(),
+        tris: Vec::new(),
         tri_cell: Vec::new(),
         cells: Vec::new(),
     };
@@ -63,14 +133,14 @@ fn level<B: Band<Coord = C3>>(lat: &Lattice, band: &B, phi: &[f64]) -> Level {
             continue;
         }
         let p0 = lat.pos(c);
-        let before = l.surface.triangles.len();
+        let before = l.tris.len();
         for t in KUHN {
             let pts = t.map(|k| p0 + lat.h * corner_offset(k));
-            l.surface.add_tet_zero_level(pts, t.map(|k| v[k]));
+            tet_zero_level(pts, t.map(|k| v[k]), &mut l.tris);
         }
         let id = l.cells.len() as u32;
         l.tri_cell
-            .extend(std::iter::repeat(id).take(l.surface.triangles.len() - before));
+            .extend(std::iter::repeat(id).take(l.tris.len() - before));
         l.cells.push((c, v));
     }
     l
@@ -108,10 +178,8 @@ pub fn zero_level_integral<B: Band<Coord = C3>>(
     g: impl Fn(DVec3) -> f64,
 ) -> (f64, f64) {
     let l = level(lat, band, phi);
-    let pts = &l.surface.points;
     let (mut area, mut total) = (0.0, 0.0);
-    for (t, tri) in l.surface.triangles.iter().enumerate() {
-        let [a, b, c] = tri.map(|k| pts[k as usize]);
+    for (t, &[a, b, c]) in l.tris.iter().enumerate() {
         let ar = 0.5 * (b - a).cross(c - a).length();
         area += ar;
         for (wa, wb, wc) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
@@ -148,36 +216,20 @@ fn trilinear(v: &[f64; 8], p0: DVec3, h: f64, q: DVec3) -> (f64, DVec3) {
     (val, g)
 }
 
-/// `(distance, |cos| of the offset with the normal, side)` of `p` to the triangle `t` itself.
-fn to_triangle(l: &Level, p: DVec3, t: u32) -> (f64, f64, f64) {
-    let pts = &l.surface.points;
-    let [a, b, c] = l.surface.triangles[t as usize].map(|k| pts[k as usize]);
-    let q = closest_on_triangle(p, a, b, c);
-    let n = (b - a).cross(c - a);
-    let s = (p - q).dot(n);
-    let d0 = (p - q).length();
-    let cos = if d0 > 0.0 && n.length() > 0.0 {
-        (s / (d0 * n.length())).abs()
-    } else {
-        0.0
-    };
-    (d0, cos, if s < 0.0 { -1.0 } else { 1.0 })
-}
-
-/// Cheap lower bounds of the distance to a triangle: its circumscribing ball about the
-/// centroid and its plane.
+/// A triangle of the zero level with cheap lower bounds of the distance to it: its
+/// circumscribing ball about the centroid and its plane.
 #[derive(Clone, Copy)]
-struct TriBound {
+struct Tri {
+    corners: [DVec3; 3],
     centre: DVec3,
     radius: f64,
     normal: DVec3,
     offset: f64,
 }
 
-impl TriBound {
-    fn new(l: &Level, t: usize) -> TriBound {
-        let pts = &l.surface.points;
-        let [a, b, c] = l.surface.triangles[t].map(|k| pts[k as usize]);
+impl Tri {
+    fn new(corners: [DVec3; 3]) -> Tri {
+        let [a, b, c] = corners;
         let centre = (a + b + c) / 3.0;
         let radius = [a, b, c]
             .iter()
@@ -187,7 +239,8 @@ impl TriBound {
         let len = n.length();
         let normal = if len > 0.0 { n / len } else { DVec3::ZERO };
         // Rounding slack, so the bound never exceeds the distance computed from the vertices.
-        TriBound {
+        Tri {
+            corners,
             centre,
             radius: radius * (1.0 + 1e-9),
             normal,
@@ -195,21 +248,39 @@ impl TriBound {
         }
     }
 
-    /// A lower bound of the distance of `p` to the triangle.
+    /// Whether a lower bound of the distance of `p` to the triangle exceeds `lim`.
     #[inline]
-    fn lower(&self, p: DVec3) -> f64 {
-        let ball = (p - self.centre).length() - self.radius;
-        let plane = (self.normal.dot(p) - self.offset).abs() * (1.0 - 1e-9);
-        ball.max(plane)
+    fn beyond(&self, p: DVec3, lim: f64) -> bool {
+        if (self.normal.dot(p) - self.offset).abs() * (1.0 - 1e-9) > lim {
+            return true;
+        }
+        let r = lim + self.radius;
+        (p - self.centre).length_squared() > r * r
     }
-}
 
-/// The distance of `p` to the trilinear zero level near triangle `t`: the closest point on the
-/// triangle projected onto it.
-fn to_level(lat: &Lattice, l: &Level, p: DVec3, t: u32) -> f64 {
-    let pts = &l.surface.points;
-    let [a, b, c] = l.surface.triangles[t as usize].map(|k| pts[k as usize]);
-    (p - l.project(lat, t, closest_on_triangle(p, a, b, c))).length()
+    /// The closest point of the triangle to `p`.
+    #[inline]
+    fn closest(&self, p: DVec3) -> DVec3 {
+        let [a, b, c] = self.corners;
+        closest_on_triangle(p, a, b, c)
+    }
+
+    /// The distance of `p` to the triangle.
+    #[inline]
+    fn distance(&self, p: DVec3) -> f64 {
+        (p - self.closest(p)).length()
+    }
+
+    /// `|cos|` of the angle between the offset of `p` from the triangle and its normal.
+    fn cos(&self, p: DVec3) -> f64 {
+        let d = p - self.closest(p);
+        let len = d.length();
+        if len > 0.0 && self.normal != DVec3::ZERO {
+            (d.dot(self.normal) / len).abs()
+        } else {
+            0.0
+        }
+    }
 }
 
 /// Calls `f(i, nbrs)` for every node `i` of the sorted coordinates `coords` (in parallel chunks)
@@ -286,10 +357,7 @@ pub fn extend_distance<B: Band<Coord = C3>>(
         }
     }
     // Seeds: the corners of the crossed cells take the nearest triangle of their cells.
-    let bounds: Vec<TriBound> = (0..l.surface.triangles.len())
-        .into_par_iter()
-        .map(|t| TriBound::new(&l, t))
-        .collect();
+    let tris: Vec<Tri> = l.tris.par_iter().map(|&t| Tri::new(t)).collect();
     let mut best = vec![NONE; coords.len()];
     let mut dist = vec![f64::INFINITY; coords.len()];
     let mut seed = vec![false; coords.len()];
@@ -305,11 +373,11 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             };
             seed[i] = true;
             let p = lat.pos(coords[i]);
-            for (t, bound) in bounds.iter().enumerate().take(tri).skip(start) {
-                if bound.lower(p) >= dist[i] {
+            for (t, tr) in tris.iter().enumerate().take(tri).skip(start) {
+                if tr.beyond(p, dist[i]) {
                     continue;
                 }
-                let (d, _, _) = to_triangle(&l, p, t as u32);
+                let d = tr.distance(p);
                 if d < dist[i] {
                     dist[i] = d;
                     best[i] = t as u32;
@@ -319,14 +387,14 @@ pub fn extend_distance<B: Band<Coord = C3>>(
     }
     // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes). Only
     // nodes with a neighbour that changed in the last pass are visited again, and a candidate
-    // triangle is measured only when its lower bound can beat the best so far.
+    // triangle is measured only when its lower bound can beat the best so far (the node's own
+    // triangle, whose distance is known, bounds the search from the start).
     let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
     let layers = (max_dist / lat.h).ceil() as usize + 1;
     let tie = 1e-12 * lat.h;
-    let mut side = vec![1.0f64; coords.len()];
     let mut moved = vec![true; coords.len()];
     for pass in 0..layers {
-        let res: Vec<Option<(f64, f64, f64, u32)>> = (0..coords.len())
+        let res: Vec<Option<(f64, u32)>> = (0..coords.len())
             .into_par_iter()
             .map(|i| {
                 let nb = &nbr[i];
@@ -334,61 +402,72 @@ pub fn extend_distance<B: Band<Coord = C3>>(
                     return None;
                 }
                 let p = lat.pos(coords[i]);
-                // The node's own triangle bounds the search from the start.
                 let own = best[i];
-                let limit = if own == NONE {
-                    f64::INFINITY
-                } else {
-                    to_triangle(&l, p, own).0 + tie
-                };
-                let mut seen = [NONE; 28];
+                let (mut bd, mut bt) = (dist[i], own);
+                // `|cos|` of the best triangle, computed when a tie needs it.
+                let mut bcos = f64::NAN;
+                let mut seen = [NONE; 27];
                 let mut ns = 0;
-                let mut b = (f64::INFINITY, 0.0f64, 1.0f64, NONE);
-                for &j in nb.iter().chain(std::iter::once(&(i as u32))) {
+                for &j in nb.iter() {
                     if j == NONE {
                         continue;
                     }
                     let t = best[j as usize];
-                    if t == NONE || t == b.3 || bounds[t as usize].lower(p) > limit.min(b.0 + tie) {
-                        continue;
-                    }
-                    if seen[..ns].contains(&t) {
+                    if t == NONE || t == bt || seen[..ns].contains(&t) {
                         continue;
                     }
                     seen[ns] = t;
                     ns += 1;
-                    let (d, cos, s) = to_triangle(&l, p, t);
-                    let tied = (d - b.0).abs() <= tie;
-                    if d < b.0 - tie || (tied && (cos > b.1 || (cos == b.1 && t < b.3))) {
-                        b = (d, cos, s, t);
+                    let tr = &tris[t as usize];
+                    if tr.beyond(p, bd + tie) {
+                        continue;
+                    }
+                    let d = tr.distance(p);
+                    if d < bd - tie {
+                        (bd, bt, bcos) = (d, t, f64::NAN);
+                    } else if (d - bd).abs() <= tie {
+                        // Ties go to the triangle facing the node most, then the lowest index.
+                        if bcos.is_nan() {
+                            bcos = tris[bt as usize].cos(p);
+                        }
+                        let cos = tr.cos(p);
+                        if cos > bcos || (cos == bcos && t < bt) {
+                            (bd, bt, bcos) = (d, t, cos);
+                        }
                     }
                 }
-                Some(b)
+                (bt != own).then_some((bd, bt))
             })
             .collect();
         let mut changed = false;
         for (i, r) in res.into_iter().enumerate() {
             moved[i] = false;
-            let Some((d, _, s, t)) = r else { continue };
-            if t != best[i] {
-                changed = true;
-                moved[i] = true;
-            }
+            let Some((d, t)) = r else { continue };
+            changed = true;
+            moved[i] = true;
             best[i] = t;
             dist[i] = d;
-            side[i] = s;
         }
         if !changed && pass > 0 {
             break;
         }
     }
-    let dist: Vec<f64> = (0..coords.len())
+    // The distance to the trilinear zero level from the nearest triangle, and the side of it.
+    let (dist, side): (Vec<f64>, Vec<f64>) = (0..coords.len())
         .into_par_iter()
         .map(|i| match best[i] {
-            NONE => f64::INFINITY,
-            t => to_level(lat, &l, lat.pos(coords[i]), t),
+            NONE => (f64::INFINITY, 1.0),
+            t => {
+                let p = lat.pos(coords[i]);
+                let tr = &tris[t as usize];
+                let q = tr.closest(p);
+                let [a, b, c] = tr.corners;
+                let s = (p - q).dot((b - a).cross(c - a));
+                let d = (p - l.project(lat, t, q)).length();
+                (d, if s < 0.0 { -1.0 } else { 1.0 })
+            }
         })
-        .collect();
+        .unzip();
     // The crossing corners: the field times the slope of the least-squares line `d ≈ s x + b`
     // through (field, signed distance) over the crossing corners of the 3³ neighbourhood (the
     // zero level stays put to within the variation of the factor; the gradient is renormalised).

@@ -73,19 +73,28 @@ impl Kernel {
         Kernel { g, grad }
     }
 
-    /// The stiffness weighted by `|∇Φ|_ε⁻¹` at the Gauss points for the corner values `v`.
+    /// The stiffness weighted by `|∇Φ|_ε⁻¹` at the Gauss points for the corner values `v`
+    /// (the upper triangle summed, the lower one mirrored: `G_q` is symmetric).
     fn mcf(&self, eps: f64, v: &[f64; 8], ke: &mut [f64; 64]) {
-        ke.fill(0.0);
-        for (gq, grq) in self.g.iter().zip(&self.grad) {
+        debug_assert_eq!(self.g.len(), 8);
+        let mut w = [0.0; 8];
+        for (wq, grq) in w.iter_mut().zip(&self.grad) {
             let mut d = [0.0; 3];
             for (vk, gk) in v.iter().zip(grq) {
                 d[0] += vk * gk[0];
                 d[1] += vk * gk[1];
                 d[2] += vk * gk[2];
             }
-            let a = 1.0 / (eps * eps + d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            for (k, g) in ke.iter_mut().zip(gq) {
-                *k += a * g;
+            *wq = 1.0 / (eps * eps + d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        }
+        for a in 0..8 {
+            for b in a..8 {
+                let mut k = 0.0;
+                for (wq, gq) in w.iter().zip(&self.g) {
+                    k += wq * gq[a * 8 + b];
+                }
+                ke[a * 8 + b] = k;
+                ke[b * 8 + a] = k;
             }
         }
     }
