@@ -16,6 +16,7 @@ mod problems;
 pub mod table41;
 
 use crate::app::plot::{loglog_png, LogLogPlot, Series};
+use anisomesh::backends::dtgrid::plane::{DtGrid2Backend, DtGrid2Options};
 use anisomesh::backends::dtgrid::DtGridBackend;
 use anisomesh::backends::fitted::FittedBackend;
 use anisomesh::backends::{AdaptedBackend, BuildSpec, LevelSetBackend, D2, D3};
@@ -53,7 +54,29 @@ pub fn level_set_backends() -> Vec<(&'static str, Build2)> {
     vec![
         entry2::<AdaptedBackend>("adapted"),
         entry2::<FittedBackend>("fitted"),
+        ("dtgrid", Box::new(dtgrid2)),
     ]
+}
+
+/// The planar DT-Grid band of the cross-check: the default band (`j = 2`, Dirichlet conditions,
+/// up to 5 solves per step) with mean curvature sub-steps `τ ≤ (jh)²`, 000's second-order
+/// regime.
+fn dtgrid2(s: &BuildSpec<'_, D2>) -> Result<Box<dyn LevelSetBackend<D2>>> {
+    let mut o = DtGrid2Options::default();
+    o.tau_per_h2 = (o.mcf.j * o.mcf.j) as f64;
+    o.tau_per_h = f64::INFINITY;
+    Ok(Box::new(DtGrid2Backend::new(s, o)?))
+}
+
+/// The coarsest resolution of a level-set back end on the shrinking circle, `h0`, halved per
+/// level: the band takes `τ ≤ (jh)²`, `(0.4 h)/(jh)²` sub-steps per step of the others, so it
+/// starts one level coarser than the meshes.
+pub fn circle_h0(backend: &str) -> f64 {
+    if backend == "dtgrid" {
+        0.04
+    } else {
+        0.02
+    }
 }
 
 /// The 3D level-set back ends the cross-check runs on the shrinking sphere, beside the
