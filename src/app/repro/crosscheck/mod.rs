@@ -214,7 +214,19 @@ pub struct CrossReport {
 pub fn planned_runs(res: Resolution) -> usize {
     let l = res.levels();
     let (n2, n3) = (level_set_backends().len(), level_set_backends_3d().len());
-    3 * l * (n2 + 2) + res.levels_3d() * n3 + 2 * l + l.min(3) * n2
+    let zalesak: usize = level_set_backends()
+        .iter()
+        .map(|(name, _)| zalesak_levels(res, name))
+        .sum();
+    3 * l * (n2 + 2) + res.levels_3d() * n3 + 2 * l + zalesak
+}
+
+/// The number of Zalesak levels of a level-set back end: at most 3 (a revolution is the
+/// costliest run), at most 2 for the band (its third level, h = 0.005, took 8× its second:
+/// 250 advection sub-steps of 2 cells, each rebuilding the band and its distance).
+pub fn zalesak_levels(res: Resolution, backend: &str) -> usize {
+    let cap = if backend == "dtgrid" { 2 } else { 3 };
+    res.levels().min(cap)
 }
 
 /// For each pair of back ends in `p` with at least two rows carrying a value: whether their

@@ -313,6 +313,9 @@ pub fn zalesak(
     // The tiny resolution stops one level short of the others: a revolution is the costliest run.
     for k in 0..res.levels().min(3) {
         for (name, build) in backends {
+            if k >= super::zalesak_levels(res, name) {
+                continue;
+            }
             let h = H0 / 2f64.powi(k as i32);
             let start = Instant::now();
             let mut b = build(&BuildSpec {

@@ -94,9 +94,24 @@ fn hermite6(t: f64) -> [[f64; 6]; 3] {
     let (t2, t3) = (t * t, t * t * t);
     // H00, H01, H10, H11 and their first and second derivatives.
     let h = [
-        [2.0 * t3 - 3.0 * t2 + 1.0, -2.0 * t3 + 3.0 * t2, t3 - 2.0 * t2 + t, t3 - t2],
-        [6.0 * t2 - 6.0 * t, -6.0 * t2 + 6.0 * t, 3.0 * t2 - 4.0 * t + 1.0, 3.0 * t2 - 2.0 * t],
-        [12.0 * t - 6.0, -12.0 * t + 6.0, 6.0 * t - 4.0, 6.0 * t - 2.0],
+        [
+            2.0 * t3 - 3.0 * t2 + 1.0,
+            -2.0 * t3 + 3.0 * t2,
+            t3 - 2.0 * t2 + t,
+            t3 - t2,
+        ],
+        [
+            6.0 * t2 - 6.0 * t,
+            -6.0 * t2 + 6.0 * t,
+            3.0 * t2 - 4.0 * t + 1.0,
+            3.0 * t2 - 2.0 * t,
+        ],
+        [
+            12.0 * t - 6.0,
+            -12.0 * t + 6.0,
+            6.0 * t - 4.0,
+            6.0 * t - 2.0,
+        ],
     ];
     // The slopes at offsets 0 and 1 (times h) from the six nodes.
     const D0: [f64; 6] = [1.0, -8.0, 0.0, 8.0, -1.0, 0.0];
@@ -361,7 +376,11 @@ impl Patch {
             if !len.is_finite() || !dl.is_finite() {
                 break;
             }
-            let s = if len > 0.5 * self.h { 0.5 * self.h / len } else { 1.0 };
+            let s = if len > 0.5 * self.h {
+                0.5 * self.h / len
+            } else {
+                1.0
+            };
             x = (x + s * dx).clamp(lo, hi);
             lam += s * dl;
         }
