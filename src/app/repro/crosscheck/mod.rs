@@ -62,9 +62,12 @@ pub fn level_set_backends() -> Vec<(&'static str, Build2)> {
 /// up to 5 solves per step) with mean curvature sub-steps `τ ≤ (jh)²`, 000's second-order
 /// regime.
 fn dtgrid2(s: &BuildSpec<'_, D2>) -> Result<Box<dyn LevelSetBackend<D2>>> {
-    let mut o = DtGrid2Options::default();
-    o.tau_per_h2 = (o.mcf.j * o.mcf.j) as f64;
-    o.tau_per_h = f64::INFINITY;
+    let d = DtGrid2Options::default();
+    let o = DtGrid2Options {
+        tau_per_h2: (d.mcf.j * d.mcf.j) as f64,
+        tau_per_h: f64::INFINITY,
+        ..d
+    };
     Ok(Box::new(DtGrid2Backend::new(s, o)?))
 }
 

@@ -1,12 +1,15 @@
-//! Reconstruction of a planar band field between its nodes: the bilinear (Q1) interpolant, and
-//! the bicubic Catmull–Rom interpolant (exact for quadratics, interpolation error `O(h³)`,
-//! continuously differentiable across cells) where the `4 × 4` nodes around a cell are band
-//! nodes. A [`Patch`] holds one cell's reconstruction and gives the value, gradient and Hessian
+//! Reconstruction of a planar band field between its nodes: the bicubic Hermite interpolant
+//! with fourth-order central-difference slopes (exact for cubics, interpolation error `O(h⁴)`,
+//! continuously differentiable across cells) where the `6 × 6` nodes around a cell are band
+//! nodes, else the bicubic Catmull–Rom interpolant (exact for quadratics, `O(h³)`) where the
+//! `4 × 4` nodes are, else the bilinear (Q1) interpolant. A [`Patch`] holds one cell's reconstruction and gives the value, gradient and Hessian
 //! ([`Jet`]) at any point near the cell (a cell's polynomial continued a little outside it).
 //!
 //! The bicubic zero level is what the band's zero level, distance extension and curvature read
 //! (000 §2.4: the extension must be second order for `j ≥ 2`; reading the chords or the bilinear
-//! zero level instead moves a convex zero level inwards by `O(h²κ)` at every redistancing).
+//! zero level instead moves a convex zero level inwards by `O(h²κ)` at every redistancing; with
+//! the `O(h³)` Catmull–Rom level the nodal curvature of the distance is only first order, with
+//! the `O(h⁴)` Hermite level second order).
 
 use super::{Grid2, Plane, C2};
 use crate::backends::dtgrid::band::{Band, GridCoord};
@@ -164,9 +167,9 @@ pub struct Patch {
 }
 
 impl Patch {
-    /// The bicubic Hermite patch of `cell` ([`hermite6`], `O(h⁴)`) where its `6 × 6` nodes are
-    /// band nodes, else the Catmull–Rom patch where its `4 × 4` nodes are, else the bilinear
-    /// one where its corners are, else `None`.
+    /// The bicubic Hermite patch of `cell` (fourth-order slopes, `O(h⁴)`) where its `6 × 6`
+    /// nodes are band nodes, else the Catmull–Rom patch where its `4 × 4` nodes are, else the
+    /// bilinear one where its corners are, else `None`.
     pub fn of(f: &Field<'_>, cell: C2) -> Option<Patch> {
         let mut w = [0.0; 36];
         let wide = w.iter_mut().enumerate().all(|(k, wk)| {
@@ -355,7 +358,7 @@ impl Patch {
                 1.0 + lam * j.hess[2],
             );
             let det = -(a * g.y * g.y - 2.0 * b * g.x * g.y + c * g.x * g.x);
-            if !(det.abs() > 1e-300) {
+            if det.is_nan() || det.abs() <= 1e-300 {
                 break;
             }
             let rhs = [-r.x, -r.y, -j.value];

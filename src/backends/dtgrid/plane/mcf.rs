@@ -1,6 +1,7 @@
 //! Mean curvature motion of a planar level set on a narrow band (000 §2.2–§2.4 in two
 //! dimensions): each step solves `(M[Φ^k] + τ L[Φ^k]) Φ^{k+1} = M[Φ^k] Φ^k` (000 (2.5)) on the
-//! band, with Dirichlet values on its boundary layer (000 (2.12)), natural conditions, or
+//! band, with Dirichlet values on its boundary layer (000 (2.12); the first solve's values the
+//! distance moved by the predicted motion of the zero level), natural conditions, or
 //! transparent ones (000 (2.11): the boundary flux of `Φ_approx = Φ^k` added, one solve). With
 //! more than one solve per step (Dirichlet only) this is the nested inner iteration of 000 §2.4:
 //! after each solve the band is rebuilt around the new zero level and the new iterate replaced
@@ -127,8 +128,8 @@ fn predicted(plane: &Plane, nb: &NarrowBand<Grid2>, phi: &[f64], tau: f64) -> Ve
         .map(|i| {
             let k0 = foot[i].or_else(|| {
                 let (mut s, mut m) = (0.0, 0);
-                for &j in &nbrs[i] {
-                    if let Some(k) = (j != NONE).then(|| foot[j as usize]).flatten() {
+                for &j in nbrs[i].iter().filter(|&&j| j != NONE) {
+                    if let Some(k) = foot[j as usize] {
                         s += k;
                         m += 1;
                     }
