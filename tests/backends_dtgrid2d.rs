@@ -69,7 +69,7 @@ fn circle_shrinks_at_second_order_with_tau_h2() {
         ..DtGrid2Options::default()
     };
     let e2 = circle_errors(best, 2);
-    // Measured 2.09e-4 -> 9.4e-6. The default τ ≤ h/8 (first order) is checked by the
+    // Measured 1.72e-4 -> 4.57e-5 (1.91). The default τ ≤ h/8 (first order) is checked by the
     // cross-check, which refines the time step with h.
     eprintln!("tau = h²: {e2:?} {:?}", order(&e2));
     assert!(order(&e2)[0] >= 1.7 && e2[1] < 1e-4, "{e2:?}");
@@ -142,8 +142,11 @@ fn curvature_of_a_circle_and_of_an_ellipse_converges() {
         order(&ec),
         order(&ee)
     );
+    // Measured: circle 1.09e-3, 2.61e-4, 6.86e-5 (2.06, 1.93), ellipse 6.80e-3, 1.68e-3,
+    // 4.22e-4 (2.02, 1.99): the distance to the O(h⁴) Hermite zero level read by central
+    // differences is second order.
     for e in [&ec, &ee] {
-        assert!(order(e).iter().all(|&o| o >= 1.0) && e[2] < 1e-2, "{e:?}");
+        assert!(order(e).iter().all(|&o| o >= 1.7) && e[2] < 1e-3, "{e:?}");
     }
 }
 
@@ -249,9 +252,12 @@ fn circle_heat_transparent_conditions_beat_natural_ones() {
 
 /// Transparent conditions for mean curvature motion (000 (2.11), one solve per step on the
 /// band of `Φ^k`) against Dirichlet conditions with up to 5 inner solves, at τ = h/8 on the
-/// circle R0 = 0.5 to T = 0.06 at h = 0.02 in [−1, 1]². Measured: transparent 4.6e-3 with 24
-/// solves, Dirichlet 8.3e-3 with 120 (every step uses all 5: at τ ≫ (jh)² the Dirichlet data
-/// pin the zero level, and the inner iteration gains only O((jh)²/τ) per solve).
+/// circle R0 = 0.5 to T = 0.06 at h = 0.02 in [−1, 1]². The Dirichlet data of a step's first
+/// solve are the distance moved by the zero level's predicted motion `τκ₀`, so the inner
+/// iteration starts `O(τ²)` from its fixed point. Measured: transparent 4.6e-3 with 24 solves,
+/// Dirichlet 3.9e-4 with 49 (with the unmoved data every step took all 5 solves, 120, and the
+/// error was 8.3e-3: at τ ≫ (jh)² the Dirichlet data pin the zero level and each solve gains
+/// only O((jh)²/τ)).
 #[test]
 fn transparent_mean_curvature_steps_take_one_solve() {
     use anisomesh::backends::dtgrid::scheme::Bc;
@@ -282,6 +288,6 @@ fn transparent_mean_curvature_steps_take_one_solve() {
     let (et, st) = run(Bc::Transparent);
     let (ed, sd) = run(Bc::Dirichlet);
     eprintln!("transparent {et:.3e} ({st} solves), dirichlet {ed:.3e} ({sd} solves)");
-    assert!(st == 24 && sd > st, "{st} {sd}");
-    assert!(et < 6e-3 && et < ed, "{et} {ed}");
+    assert!(st == 24 && sd <= 60, "{st} {sd}");
+    assert!(et < 6e-3 && ed < 1e-3, "{et} {ed}");
 }

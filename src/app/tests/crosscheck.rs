@@ -62,13 +62,17 @@ fn tiny_crosscheck_converges_and_writes() {
     }
 
     // Circle by curvature: every level-set back end at its expected order. Measured: adapted
-    // 2.1e-3 -> 9.6e-4 (order 1.15), fitted 5.18e-4 -> 1.45e-4 (1.83), polygon 2.4e-3 ->
-    // 5.4e-4 (2.12), quadratic arcs 6.2e-3 -> 1.7e-3 (1.90).
+    // 2.1e-3 -> 9.6e-4 (order 1.15), fitted 5.18e-4 -> 1.45e-4 (1.83), the band at h = 0.04,
+    // 0.02 with τ = (2h)² 2.44e-3 -> 5.47e-4 (2.16), polygon 2.4e-3 -> 5.4e-4 (2.12),
+    // quadratic arcs 6.2e-3 -> 1.7e-3 (1.90).
     let c = problem(&report, "circle_mcf");
     for (b, _) in crosscheck::level_set_backends() {
         let (o, e) = finest(c, b);
         assert!(o >= expected_flow_order(b) && e < 2e-3, "{b} {o} {e}");
     }
+    // The band at τ ∝ h² is second order (000 §2.3).
+    let (o, _) = finest(c, "dtgrid");
+    assert!(o >= 1.5, "dtgrid circle order {o}");
     for b in ["parametric P1", "parametric P2"] {
         let (o, e) = finest(c, b);
         assert!(o > 1.7 && e < 2e-3, "{b} {o} {e}");
@@ -83,14 +87,18 @@ fn tiny_crosscheck_converges_and_writes() {
 
     // Curvature of a circle and of the ellipse from a non-distance function: every back end
     // converges at order at least 1. Measured: circle adapted (quartic fit) 2.3e-4 -> 6.8e-5
-    // (1.79), polygon 2.6e-2 -> 6.4e-3 (2.03), arcs 8.8e-3 -> 2.4e-3 (1.91); ellipse adapted
-    // 1.9e-3 -> 5.2e-4 (1.88), polygon 2.25, arcs 1.80.
+    // (1.79), band 2.64e-4 -> 6.57e-5 (2.00), polygon 2.6e-2 -> 6.4e-3 (2.03), arcs 8.8e-3 ->
+    // 2.4e-3 (1.91); ellipse adapted 1.9e-3 -> 5.2e-4 (1.88), band 1.74e-3 -> 4.40e-4 (1.98),
+    // polygon 2.25, arcs 1.80. The band's nodal curvature reads the signed distance to its
+    // O(h⁴) Hermite zero level by central differences: second order.
     for name in ["curvature_circle", "curvature_ellipse"] {
         let k = problem(&report, name);
         for b in k.backends() {
             let (o, e) = finest(k, b);
             assert!(o >= 1.0 && e < 2e-2, "{name} {b} {o} {e}");
         }
+        let (o, _) = finest(k, "dtgrid");
+        assert!(o >= 1.5, "{name} dtgrid {o}");
     }
 
     // Zalesak, one revolution. Measured: area 2.1e-4 / 6.4e-4 (the signed errors of the P1

@@ -16,6 +16,7 @@ mod problems;
 pub mod table41;
 
 use crate::app::plot::{loglog_png, LogLogPlot, Series};
+use anisomesh::backends::dtgrid::plane::{DtGrid2Backend, DtGrid2Options};
 use anisomesh::backends::dtgrid::DtGridBackend;
 use anisomesh::backends::fitted::FittedBackend;
 use anisomesh::backends::{AdaptedBackend, BuildSpec, LevelSetBackend, D2, D3};
@@ -53,7 +54,32 @@ pub fn level_set_backends() -> Vec<(&'static str, Build2)> {
     vec![
         entry2::<AdaptedBackend>("adapted"),
         entry2::<FittedBackend>("fitted"),
+        ("dtgrid", Box::new(dtgrid2)),
     ]
+}
+
+/// The planar DT-Grid band of the cross-check: the default band (`j = 2`, Dirichlet conditions,
+/// up to 5 solves per step) with mean curvature sub-steps `τ ≤ (jh)²`, 000's second-order
+/// regime.
+fn dtgrid2(s: &BuildSpec<'_, D2>) -> Result<Box<dyn LevelSetBackend<D2>>> {
+    let d = DtGrid2Options::default();
+    let o = DtGrid2Options {
+        tau_per_h2: (d.mcf.j * d.mcf.j) as f64,
+        tau_per_h: f64::INFINITY,
+        ..d
+    };
+    Ok(Box::new(DtGrid2Backend::new(s, o)?))
+}
+
+/// The coarsest resolution of a level-set back end on the shrinking circle, `h0`, halved per
+/// level: the band takes `τ ≤ (jh)²`, `(0.4 h)/(jh)²` sub-steps per step of the others, so it
+/// starts one level coarser than the meshes.
+pub fn circle_h0(backend: &str) -> f64 {
+    if backend == "dtgrid" {
+        0.04
+    } else {
+        0.02
+    }
 }
 
 /// The 3D level-set back ends the cross-check runs on the shrinking sphere, beside the
@@ -191,7 +217,19 @@ pub struct CrossReport {
 pub fn planned_runs(res: Resolution) -> usize {
     let l = res.levels();
     let (n2, n3) = (level_set_backends().len(), level_set_backends_3d().len());
-    3 * l * (n2 + 2) + res.levels_3d() * n3 + 2 * l + l.min(3) * n2
+    let zalesak: usize = level_set_backends()
+        .iter()
+        .map(|(name, _)| zalesak_levels(res, name))
+        .sum();
+    3 * l * (n2 + 2) + res.levels_3d() * n3 + 2 * l + zalesak
+}
+
+/// The number of Zalesak levels of a level-set back end: at most 3 (a revolution is the
+/// costliest run), at most 2 for the band (its third level, h = 0.005, took 8× its second:
+/// 250 advection sub-steps of 2 cells, each rebuilding the band and its distance).
+pub fn zalesak_levels(res: Resolution, backend: &str) -> usize {
+    let cap = if backend == "dtgrid" { 2 } else { 3 };
+    res.levels().min(cap)
 }
 
 /// For each pair of back ends in `p` with at least two rows carrying a value: whether their

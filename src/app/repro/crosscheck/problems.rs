@@ -33,7 +33,7 @@ fn spec<'a>(shape: &'a dyn Shape, h: f64) -> BuildSpec<'a, D2> {
 
 /// The circle shrinking by curvature from `R0 = 0.5` to `T = 0.06`: the error of the radius
 /// `√(A/π)` of the enclosed area `A` against `√(R0² − 2T)`. Level-set back ends at
-/// `h = 0.02 / 2^k` with `dt ≈ 0.4h`; parametric curves with `16·2^k` vertices and `τ ∝ h²`.
+/// `h = h0 / 2^k` ([`super::circle_h0`]: 0.02, the band 0.04) with `dt ≈ 0.4h`; parametric curves with `16·2^k` vertices and `τ ∝ h²`.
 pub fn circle_mcf(
     res: Resolution,
     backends: &[(&'static str, Build2)],
@@ -47,7 +47,7 @@ pub fn circle_mcf(
     };
     for (name, build) in backends {
         for k in 0..res.levels() {
-            let h = H0 / 2f64.powi(k as i32);
+            let h = super::circle_h0(name) / 2f64.powi(k as i32);
             let start = Instant::now();
             let mut b = build(&spec(&circle, h))?;
             let steps = (T_END / (0.4 * h)).round().max(1.0) as usize;
@@ -313,6 +313,9 @@ pub fn zalesak(
     // The tiny resolution stops one level short of the others: a revolution is the costliest run.
     for k in 0..res.levels().min(3) {
         for (name, build) in backends {
+            if k >= super::zalesak_levels(res, name) {
+                continue;
+            }
             let h = H0 / 2f64.powi(k as i32);
             let start = Instant::now();
             let mut b = build(&BuildSpec {

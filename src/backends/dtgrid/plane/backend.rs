@@ -8,11 +8,12 @@
 //!   ([`super::mcf::PlaneMcf::new`]), so a function that is not a distance becomes one.
 //! - **Mean curvature**: sub-steps of at most `min(tau_per_h2 · h², tau_per_h · h)` of
 //!   000 (2.5) with Dirichlet conditions and the nested inner iteration of 000 §2.4 (by
-//!   default), natural or transparent conditions ([`super::mcf::PlaneMcf::step`]).
+//!   default; the first data of a step predicted from the zero level's curvature), natural or
+//!   transparent conditions ([`super::mcf::PlaneMcf::step`]).
 //! - **Advection**: semi-Lagrangian sub-steps moving the zero level at most `cfl ≤ j` cells:
 //!   the band dilated by that many cells takes `u(t, X)` at the foot `X` of its characteristic
-//!   (classical Runge–Kutta backwards in time; bicubic Catmull–Rom interpolation in the old
-//!   band, bilinear near its edge), the band is rebuilt around the new zero level, and nodes
+//!   (classical Runge–Kutta backwards in time; bicubic interpolation in the old band,
+//!   [`super::cubic::Patch`], bilinear near its edge), the band is rebuilt around the new zero level, and nodes
 //!   whose foot left the old band take the signed distance to it.
 //! - **Redistance**: the signed distance to the zero level on the band rebuilt around it.
 //! - **Measures**: area and length of the zero level ([`super::level`]).

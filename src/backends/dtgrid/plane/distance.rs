@@ -7,8 +7,9 @@
 //! Every node finds its nearest cut cell by propagation: the corners of the cut cells take the
 //! nearest of their own cells, then, layer by layer, every node takes the nearest among the
 //! cells its `3 × 3` neighbours found (distances to the chords a cell's pieces are made of).
-//! The distance is then to that cell's bicubic zero level: the closest point found by
-//! alternating tangential moves and Newton projections from the closest chord point.
+//! The distance is then to the bicubic zero level of that cell and the cut cells around it:
+//! each cell's closest point by Newton's method on the optimality system from the closest chord
+//! point ([`super::cubic::Patch::closest`]), the nearest of those that lie in their own cell.
 
 use super::cubic::Field;
 use super::lattice::{neighbours, Plane, NONE};
@@ -163,27 +164,47 @@ pub fn extend_distance(
             }
             let p = plane.pos(coords[i]);
             let home = cut[c as usize];
-            let mut out = (f64::INFINITY, 1.0);
-            for k in 0..9 {
-                let cell = [home[0] + k % 3 - 1, home[1] + k / 3 - 1];
-                let Ok(id) = cut.binary_search(&cell) else {
-                    continue;
-                };
+            // The nearest point among those each cell's polynomial gives inside its own cell
+            // (a cell's polynomial continued into its neighbours is not the zero level there),
+            // else among all.
+            // Cells are visited by their chords' distance and skipped once that exceeds the
+            // nearest point found by h/4 (a chord is within h²κ/8 of the level in its cell).
+            let mut cand: Vec<(f64, usize, DVec2)> = (0..9)
+                .filter_map(|k| {
+                    let cell = [home[0] + k % 3 - 1, home[1] + k / 3 - 1];
+                    let id = cut.binary_search(&cell).ok()?;
+                    let q0 = closest_chord_point(&z, &ranges, id as u32, p);
+                    Some(((p - q0).length(), id, q0))
+                })
+                .collect();
+            cand.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            let (mut own, mut any) = ((f64::INFINITY, 1.0), (f64::INFINITY, 1.0));
+            for (chord, id, q0) in cand {
+                if chord > own.0 + 0.25 * plane.h {
+                    break;
+                }
                 let patch = &z.cells[id];
-                let q0 = closest_chord_point(&z, &ranges, id as u32, p);
-                let q = patch.closest(p, q0);
-                let q = if patch.jet(q).value.abs() <= patch.jet(q0).value.abs() {
+                let (q, converged) = patch.closest(p, q0);
+                let q = if converged || patch.jet(q).value.abs() <= patch.jet(q0).value.abs() {
                     q
                 } else {
                     q0
                 };
                 let d = (p - q).length();
-                if d < out.0 {
-                    let g = patch.jet(q).grad;
-                    out = (d, if (p - q).dot(g) < 0.0 { -1.0 } else { 1.0 });
+                let g = patch.jet(q).grad;
+                let side = if (p - q).dot(g) < 0.0 { -1.0 } else { 1.0 };
+                if d < any.0 {
+                    any = (d, side);
+                }
+                if d < own.0 && patch.contains(q, 1e-6) {
+                    own = (d, side);
                 }
             }
-            out
+            if own.0.is_finite() {
+                own
+            } else {
+                any
+            }
         })
         .collect();
     let scale: Vec<f64> = if keep == Keep::Crossing {
