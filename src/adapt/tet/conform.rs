@@ -5,6 +5,9 @@
 //!    first, is collapsed in whichever direction leaves the better new ball, when the new
 //!    edges are at most `l_max` and the worst quality of the new ball is at least the worst of
 //!    the old one or [`Q_KEEP`];
+//!    then *short-edge removals* ([`short_edge_removal_pass`]): the interior edges still
+//!    shorter than `l_min` are removed by retriangulating their shells, when the new edges
+//!    are in range and the quality stays as for the collapses;
 //! 2. a split pass (edges longer than `l_max`), a swap pass;
 //! 3. *length smoothing* ([`length_smooth_pass`]): each free vertex moves toward the mean of
 //!    the points at unit metric distance from its neighbours along its current edges, accepted
@@ -82,6 +85,54 @@ pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
         let floor = ctx.ball_quality(a).min(ctx.ball_quality(b)).min(Q_KEEP);
         if mg.q >= floor {
             super::merge::apply(ctx, mg);
+            count += 1;
+        }
+    }
+    count
+}
+
+/// One pass of *short-edge removals*: every interior edge still shorter than `l_min` after
+/// the conformity collapses, shortest first, is removed by the best retriangulation of its
+/// shell without it (n → 2n − 4, [`crate::mesh3::EditMesh3::best_edge_removal`]) whose new
+/// edges are all in `[l_min, l_max]` and whose worst quality is at least the old shell's worst
+/// or [`Q_KEEP`]. Each removal takes one short edge away and adds none, and no vertex goes:
+/// the counterpart of a collapse where the collapse would make a long edge or a poor
+/// tetrahedron. Returns the number of removals.
+pub(crate) fn short_edge_removal_pass(ctx: &mut Ctx<'_>) -> usize {
+    ctx.next_pass();
+    let mut short: Vec<(u64, u32, u32)> = Vec::new();
+    for_each_edge_length(ctx, |a, b, l| {
+        if l < ctx.l_min {
+            short.push((l.to_bits(), a, b));
+        }
+    });
+    short.sort_unstable();
+    let mut count = 0;
+    let mut shell = Vec::new();
+    for (_, a, b) in short {
+        if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || !ctx.mesh.is_edge(a, b) {
+            continue;
+        }
+        ctx.mesh.shell(a, b, &mut shell);
+        let q0 = shell
+            .iter()
+            .map(|&t| ctx.tet_quality(t))
+            .fold(f64::INFINITY, f64::min);
+        let floor = q0.min(Q_KEEP);
+        let c = &*ctx;
+        let Some((q, tets)) = c.mesh.best_edge_removal(
+            a,
+            b,
+            floor,
+            |t| c.quality_of(t, None),
+            |x, y| (c.l_min..=c.l_max).contains(&c.length(x, y)),
+        ) else {
+            continue;
+        };
+        if q >= floor {
+            ctx.touch_ball(a);
+            ctx.touch_ball(b);
+            ctx.mesh.replace_shell(a, b, &tets);
             count += 1;
         }
     }
@@ -182,9 +233,12 @@ fn record(
 
 /// The conformity loop (see the module docs), recorded in `rep`.
 pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptReport) -> Result<()> {
+    // The end game splits every long edge it finds: no insertion filter.
+    ctx.split_filter = 0.0;
     let mut share = in_range_share(ctx);
     for _ in 0..ROUNDS {
-        let nc = record(ctx, PassKind::Collapse, opts, rep, collapse_pass)?;
+        let nc = record(ctx, PassKind::Collapse, opts, rep, collapse_pass)?
+            + record(ctx, PassKind::Flip, opts, rep, short_edge_removal_pass)?;
         let ns = record(ctx, PassKind::Split, opts, rep, super::split::pass)?;
         record(ctx, PassKind::Flip, opts, rep, super::swap::pass)?;
         let nm = record(ctx, PassKind::Smooth, opts, rep, length_smooth_pass)?;

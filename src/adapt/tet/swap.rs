@@ -148,12 +148,12 @@ impl Operator<Ctx<'_>> for FaceSwap {
         if ctx.length(new[0][0], new[0][1]) > ctx.l_max {
             return None;
         }
-        let q0 = ctx.cached_quality(t0).min(ctx.cached_quality(t1));
-        let q1 = new
-            .iter()
-            .map(|&t| ctx.quality_of(t, None))
-            .fold(f64::INFINITY, f64::min);
-        (q1 > GAIN * q0).then_some((f, new))
+        let floor = GAIN * ctx.cached_quality(t0).min(ctx.cached_quality(t1));
+        // Rejected at the first new tetrahedron that does not beat the floor (most checks
+        // fail, usually on the first).
+        new.iter()
+            .all(|&t| ctx.quality_of(t, None) > floor)
+            .then_some((f, new))
     }
 
     fn apply(&mut self, ctx: &mut Ctx<'_>, (f, new): Self::Plan) {

@@ -84,6 +84,25 @@ pub fn run(a: UgawgArgs) -> Result<()> {
     Ok(())
 }
 
+/// Prints, per operator kind, the passes, changes and seconds of an adaptation.
+fn print_passes(rep: &anisomesh::adapt::AdaptReport) {
+    use anisomesh::adapt::PassKind;
+    for kind in [
+        PassKind::Split,
+        PassKind::Collapse,
+        PassKind::Flip,
+        PassKind::Smooth,
+    ] {
+        let (mut n, mut count, mut s) = (0, 0, 0.0);
+        for p in rep.passes.iter().filter(|p| p.kind == kind) {
+            n += 1;
+            count += p.count;
+            s += p.seconds;
+        }
+        println!("  {kind:?}: {n} passes, {count} changes, {s:.2} s");
+    }
+}
+
 /// Adapts `start` to the analytic metric of `case` and prints the statistics of the result
 /// (the same conformity measure as for the starting mesh and as `anisomesh measure --ugawg`).
 fn adapt(case: UgawgCase, start: &Mesh3, dir: &std::path::Path) -> Result<()> {
@@ -107,6 +126,7 @@ fn adapt(case: UgawgCase, start: &Mesh3, dir: &std::path::Path) -> Result<()> {
         ),
         &c,
     );
+    print_passes(&r.adapt);
     let path = dir.join(format!("{}_adapted.mesh", case.name()));
     io::write_medit3(&path, &to_medit3(&a.mesh))?;
     println!("wrote {}", path.display());
