@@ -233,8 +233,6 @@ fn record(
 
 /// The conformity loop (see the module docs), recorded in `rep`.
 pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptReport) -> Result<()> {
-    // The end game splits every long edge it finds: no insertion filter.
-    ctx.split_filter = 0.0;
     let mut share = in_range_share(ctx);
     for _ in 0..ROUNDS {
         let nc = record(ctx, PassKind::Collapse, opts, rep, collapse_pass)?

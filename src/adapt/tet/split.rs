@@ -9,12 +9,6 @@ use crate::adapt::pass::{run_pass, Operator};
 use crate::geom::DVec3;
 use crate::metric::Sym3;
 
-/// The insertion filter of the refinement passes (metric length, [`Ctx::split_filter`]); off.
-/// Measured on UGAWG cube-linear (one thread, CPU s): 0.7 on every edge gave 98.30 % in range
-/// but worst mean ratio 0.165 (17.8 s); 0.7 on interior edges only 98.12 % / 0.467 (11.4 s);
-/// off 98.27 % / 0.504 (26.3 s).
-pub(crate) const FILTER: f64 = 0.0;
-
 /// The split operator.
 pub(crate) struct Split;
 
@@ -37,27 +31,6 @@ pub(crate) fn metric_midpoint(la: f64, lb: f64) -> f64 {
     }
 }
 
-/// Whether a vertex inserted earlier in this pass and adjacent to `a` or `b` lies within
-/// metric length `ctx.split_filter` of the new point `p` (metric `m`): the insertion filter
-/// that keeps a refinement pass from packing the midpoints of neighbouring long edges into
-/// the same spot (the edges of one shell crossing a thin layer all have their metric midpoints
-/// near each other). Refused splits come back in the next pass, on shorter edges.
-fn too_close(ctx: &Ctx<'_>, a: u32, b: u32, p: DVec3, m: &Sym3) -> bool {
-    for v in [a, b] {
-        for &t in &ctx.mesh.ball[v as usize] {
-            for w in ctx.mesh.tets[t as usize] {
-                if w >= ctx.first_new
-                    && Ctx::length_at(p, ctx.mesh.points[w as usize], m, &ctx.metric[w as usize])
-                        < ctx.split_filter
-                {
-                    return true;
-                }
-            }
-        }
-    }
-    false
-}
-
 impl Operator<Ctx<'_>> for Split {
     type Site = u32;
     type Key = (u64, u32, u32);
@@ -66,7 +39,6 @@ impl Operator<Ctx<'_>> for Split {
     const SORTED: bool = true;
 
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<u32> {
-        ctx.first_new = ctx.mesh.points.len() as u32;
         ctx.changed_vertices(super::Op::Split)
     }
 
@@ -99,9 +71,6 @@ impl Operator<Ctx<'_>> for Split {
             return None;
         }
         let m = ctx.metric_on_edge(a, b, t, p);
-        if ctx.split_filter > 0.0 && too_close(ctx, a, b, p, &m) {
-            return None;
-        }
         Some(Plan { a, b, p, m })
     }
 
