@@ -64,16 +64,22 @@ fn for_each_edge_length(ctx: &Ctx<'_>, mut f: impl FnMut(u32, u32, f64)) {
     }
 }
 
-/// One pass of conformity collapses (see the module docs); returns the number applied.
-pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
-    ctx.next_pass();
-    let mut short: Vec<(u64, u32, u32)> = Vec::new();
+/// The edges shorter than `l_min`, shortest first (ties by end points).
+fn short_edges(ctx: &Ctx<'_>) -> Vec<(u64, u32, u32)> {
+    let mut short = Vec::new();
     for_each_edge_length(ctx, |a, b, l| {
         if l < ctx.l_min {
             short.push((l.to_bits(), a, b));
         }
     });
     short.sort_unstable();
+    short
+}
+
+/// One pass of conformity collapses (see the module docs); returns the number applied.
+pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
+    ctx.next_pass();
+    let short = short_edges(ctx);
     let mut count = 0;
     for (_, a, b) in short {
         if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || ctx.length(a, b) >= ctx.l_min {
@@ -100,13 +106,7 @@ pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
 /// tetrahedron. Returns the number of removals.
 pub(crate) fn short_edge_removal_pass(ctx: &mut Ctx<'_>) -> usize {
     ctx.next_pass();
-    let mut short: Vec<(u64, u32, u32)> = Vec::new();
-    for_each_edge_length(ctx, |a, b, l| {
-        if l < ctx.l_min {
-            short.push((l.to_bits(), a, b));
-        }
-    });
-    short.sort_unstable();
+    let short = short_edges(ctx);
     let mut count = 0;
     let mut shell = Vec::new();
     for (_, a, b) in short {

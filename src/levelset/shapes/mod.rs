@@ -86,65 +86,43 @@ pub trait Shape<P: ShapePoint = DVec2>: Send + Sync {
     fn name(&self) -> String;
 }
 
-impl<P: ShapePoint, S: Shape<P> + ?Sized> Shape<P> for Box<S> {
-    fn distance(&self, p: P) -> f64 {
-        (**self).distance(p)
-    }
-    fn gradient(&self, p: P) -> P {
-        (**self).gradient(p)
-    }
-    fn hessian(&self, p: P) -> P::Hessian {
-        (**self).hessian(p)
-    }
-    fn exact_area(&self) -> Option<f64> {
-        (**self).exact_area()
-    }
-    fn exact_perimeter(&self) -> Option<f64> {
-        (**self).exact_perimeter()
-    }
-    fn boundary_samples(&self, n: usize) -> Option<Vec<P>> {
-        (**self).boundary_samples(n)
-    }
-    fn corners(&self) -> Vec<P> {
-        (**self).corners()
-    }
-    fn is_distance(&self) -> bool {
-        (**self).is_distance()
-    }
-    fn name(&self) -> String {
-        (**self).name()
-    }
+/// Implements [`Shape`] for a pointer type by forwarding every method to the shape it points to.
+macro_rules! forward_shape {
+    ($ptr:ty) => {
+        impl<P: ShapePoint, S: Shape<P> + ?Sized> Shape<P> for $ptr {
+            fn distance(&self, p: P) -> f64 {
+                (**self).distance(p)
+            }
+            fn gradient(&self, p: P) -> P {
+                (**self).gradient(p)
+            }
+            fn hessian(&self, p: P) -> P::Hessian {
+                (**self).hessian(p)
+            }
+            fn exact_area(&self) -> Option<f64> {
+                (**self).exact_area()
+            }
+            fn exact_perimeter(&self) -> Option<f64> {
+                (**self).exact_perimeter()
+            }
+            fn boundary_samples(&self, n: usize) -> Option<Vec<P>> {
+                (**self).boundary_samples(n)
+            }
+            fn corners(&self) -> Vec<P> {
+                (**self).corners()
+            }
+            fn is_distance(&self) -> bool {
+                (**self).is_distance()
+            }
+            fn name(&self) -> String {
+                (**self).name()
+            }
+        }
+    };
 }
 
-impl<P: ShapePoint, S: Shape<P> + ?Sized> Shape<P> for &S {
-    fn distance(&self, p: P) -> f64 {
-        (**self).distance(p)
-    }
-    fn gradient(&self, p: P) -> P {
-        (**self).gradient(p)
-    }
-    fn hessian(&self, p: P) -> P::Hessian {
-        (**self).hessian(p)
-    }
-    fn exact_area(&self) -> Option<f64> {
-        (**self).exact_area()
-    }
-    fn exact_perimeter(&self) -> Option<f64> {
-        (**self).exact_perimeter()
-    }
-    fn boundary_samples(&self, n: usize) -> Option<Vec<P>> {
-        (**self).boundary_samples(n)
-    }
-    fn corners(&self) -> Vec<P> {
-        (**self).corners()
-    }
-    fn is_distance(&self) -> bool {
-        (**self).is_distance()
-    }
-    fn name(&self) -> String {
-        (**self).name()
-    }
-}
+forward_shape!(Box<S>);
+forward_shape!(&S);
 
 /// Zalesak's slotted disk (004 §5.1; geometry in `papers/README.md`): the disk of radius `radius`
 /// centred at `centre` minus the slot `|x - centre.x| <= half_width`, `y <= slot_top`, cut from the
