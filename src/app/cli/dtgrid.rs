@@ -3,7 +3,7 @@
 //! one run with the given options.
 
 use crate::app::repro::dtgrid as repro;
-use anisomesh::backends::dtgrid::heat::HeatOptions;
+use anisomesh::backends::dtgrid::heat::{HeatOptions, TimeScheme};
 use anisomesh::backends::dtgrid::mcf::McfOptions;
 use anisomesh::backends::dtgrid::scheme::Bc;
 use anisomesh::Result;
@@ -38,6 +38,9 @@ pub struct HeatArgs {
     /// Time step (default h²).
     #[arg(long)]
     tau: Option<f64>,
+    /// Time discretisation of the sphere runs: euler (000 (2.10)) or bdf2 (second order).
+    #[arg(long, default_value = "euler", value_parser = ["euler", "bdf2"])]
+    time: String,
     /// Final time.
     #[arg(long, default_value_t = 0.01)]
     t_end: f64,
@@ -180,13 +183,20 @@ pub fn run(cmd: DtGrid) -> Result<()> {
             output: &a.output,
         }),
         DtGrid::Heat(a) => {
+            let time = TimeScheme::parse(&a.time)?;
             let rows = match a.n {
                 Some(n) => vec![repro::heat_row(&HeatOptions {
                     tau: a.tau,
                     t_end: a.t_end,
+                    time,
                     ..HeatOptions::paper(n, a.band, Bc::parse(&a.bc)?)
                 })?],
-                None => repro::heat_table(&table_grids(a.quick, a.max_n)?)?,
+                None => {
+                    let tau = a.tau;
+                    repro::heat_table(&table_grids(a.quick, a.max_n)?, time, |h| {
+                        tau.unwrap_or(h * h)
+                    })?
+                }
             };
             println!(
                 "heat equation on the sphere r = 1/3, t = {} (000 Table 2.1)",

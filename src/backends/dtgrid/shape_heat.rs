@@ -1,14 +1,16 @@
 //! The heat equation `∂ₜu − Δ_M u = 0` on the zero level `M` of any implicit function, solved
 //! on the narrow band as in 000 §2.1 (the scheme of [`super::heat`], there on a sphere): the
 //! band carries the signed distance `Φ` to the marching-tetrahedra zero level, each step solves
-//! `(M[Φ] + τ L[Φ]) U^{k+1} = M[Φ] U^k (+ τ Γ[U^k])` with natural or transparent conditions.
+//! `(M[Φ] + τ L[Φ]) U^{k+1} = M[Φ] U^k (+ τ Γ[U^k])` with natural or transparent conditions
+//! (backward Euler, [`super::heat::band_heat_steps`]).
 
 use super::band::Band;
-use super::fem::{assemble, elements, transparent_vector, Weight};
+use super::fem::{assemble, elements, Weight};
 use super::grid::DtGrid;
+use super::heat::{band_heat_steps, step_count, TimeScheme};
 use super::lattice::{Lattice, C3};
 use super::mcf::McfState;
-use super::scheme::{solve_all, system_matrix, Bc};
+use super::scheme::Bc;
 use super::surface::{surface_integral, zero_level};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
@@ -54,11 +56,7 @@ pub fn shape_heat(
             "the heat problem takes natural or transparent conditions".into(),
         ));
     }
-    if !(t_end.is_finite() && t_end > 0.0 && tau.is_finite() && tau > 0.0) {
-        return Err(Error::InvalidInput(format!(
-            "heat: t_end = {t_end} and tau = {tau} must be positive"
-        )));
-    }
+    let (steps, tau) = step_count(tau, t_end)?;
     let state: McfState<DtGrid<C3>> = McfState::new(lat, j, f)?;
     let (nb, phi) = (&state.nb, &state.phi);
     let n = nb.band.len();
@@ -70,24 +68,19 @@ pub fn shape_heat(
             msg: format!("not finite at {:?}", lat.pos(c)),
         });
     }
-    let steps = (t_end / tau - 1e-9).ceil().max(1.0) as usize;
-    let tau = t_end / steps as f64;
     let el = elements(nb);
-    let w = Weight::Heat;
-    let m = assemble(&lat, &el, n, phi, w)?;
-    let a = system_matrix(&m, tau)?;
-    let mut b = vec![0.0; n];
-    for _ in 0..steps {
-        b.iter_mut()
-            .zip(&m.mass)
-            .zip(&u)
-            .for_each(|((b, m), u)| *b = m * u);
-        if bc == Bc::Transparent {
-            let g = transparent_vector(&lat, &el, n, phi, &u, w);
-            b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
-        }
-        solve_all(&a, &b, &mut u)?;
-    }
+    let m = assemble(&lat, &el, n, phi, Weight::Heat)?;
+    band_heat_steps(
+        &lat,
+        &el,
+        phi,
+        &m,
+        bc,
+        TimeScheme::Euler,
+        tau,
+        steps,
+        &mut u,
+    )?;
     let z = zero_level(&lat, &nb.band, phi);
     let error = exact
         .map(|ex| surface_integral(&lat, &nb.band, &z, &u, |x, ux| (ux - ex(x)).powi(2)).sqrt());

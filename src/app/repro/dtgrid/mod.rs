@@ -2,7 +2,7 @@
 //! a sphere shrinking by mean curvature), run cell by cell beside the paper's values, with the
 //! observed orders, written as JSON (`dtgrid_heat.json`, `dtgrid_mcf.json`) and CSV.
 
-use anisomesh::backends::dtgrid::heat::{sphere_heat, HeatOptions};
+use anisomesh::backends::dtgrid::heat::{sphere_heat, HeatOptions, TimeScheme};
 use anisomesh::backends::dtgrid::lattice::{Lattice, C3};
 use anisomesh::backends::dtgrid::mcf::{sphere_mcf, McfOptions, McfState};
 use anisomesh::backends::dtgrid::scheme::Bc;
@@ -29,6 +29,8 @@ pub struct Row {
     pub inner: f64,
     /// Time step.
     pub tau: f64,
+    /// Time discretisation (`euler` or `bdf2`).
+    pub time: String,
     /// Our error.
     pub error: f64,
     /// The paper's value, where it has one.
@@ -114,6 +116,7 @@ pub fn heat_row(o: &HeatOptions) -> Result<Row> {
         bc: o.bc.name().into(),
         inner: 1.0,
         tau: r.tau,
+        time: o.time.name().into(),
         error: r.error,
         paper_error: paper_heat(o.bc, o.j, o.n),
         nodes: r.nodes,
@@ -140,6 +143,7 @@ pub fn mcf_row(
         bc: o.bc.name().into(),
         inner: r.mean_solves,
         tau: r.tau,
+        time: TimeScheme::Euler.name().into(),
         error: r.error,
         paper_error: block.and_then(|b| paper_mcf(b, o.j, n)),
         nodes: r.nodes,
@@ -149,8 +153,9 @@ pub fn mcf_row(
     })
 }
 
-/// The heat table (000 Table 2.1) on the grids `ns`.
-pub fn heat_table(ns: &[usize]) -> Result<Vec<Row>> {
+/// The heat table (000 Table 2.1) on the grids `ns` with the time discretisation `time` and the
+/// time step `tau(h)`.
+pub fn heat_table(ns: &[usize], time: TimeScheme, tau: impl Fn(f64) -> f64) -> Result<Vec<Row>> {
     let mut rows = Vec::new();
     for bc in [Bc::Natural, Bc::Transparent] {
         for j in [1, 2, 4, 8] {
@@ -159,7 +164,12 @@ pub fn heat_table(ns: &[usize]) -> Result<Vec<Row>> {
                 if (j == 4 && n < 33) || (j == 8 && n < 65) {
                     continue;
                 }
-                rows.push(heat_row(&HeatOptions::paper(n, j, bc))?);
+                let h = 1.0 / (n - 1) as f64;
+                rows.push(heat_row(&HeatOptions {
+                    time,
+                    tau: Some(tau(h)),
+                    ..HeatOptions::paper(n, j, bc)
+                })?);
             }
         }
     }
@@ -197,7 +207,7 @@ pub fn mcf_table(ns: &[usize]) -> Result<Vec<Row>> {
 /// order against the previous grid of the same row.
 pub fn format_table(rows: &[Row]) -> String {
     let mut s = String::from(
-        "    n  band bc           inner   tau        error      paper      ratio  order  nodes      s\n",
+        "    n  band bc           time  inner   tau        error      paper      ratio  order  nodes      s\n",
     );
     for (i, r) in rows.iter().enumerate() {
         let prev = i.checked_sub(1).map(|k| &rows[k]).filter(|p| {
@@ -212,8 +222,19 @@ pub fn format_table(rows: &[Row]) -> String {
                 (format!("{p:10.3e}"), format!("{:5.2}", r.error / p))
             });
         s += &format!(
-            "{:5} {:5} {:12} {:5.2} {:10.3e} {:10.3e} {} {} {} {:7} {:6.1}\n",
-            r.n, r.band, r.bc, r.inner, r.tau, r.error, paper, ratio, order, r.nodes, r.seconds
+            "{:5} {:5} {:12} {:5} {:5.2} {:10.3e} {:10.3e} {} {} {} {:7} {:6.1}\n",
+            r.n,
+            r.band,
+            r.bc,
+            r.time,
+            r.inner,
+            r.tau,
+            r.error,
+            paper,
+            ratio,
+            order,
+            r.nodes,
+            r.seconds
         );
     }
     s
@@ -231,15 +252,19 @@ pub fn write_rows(dir: &Path, name: &str, rows: &[Row]) -> Result<()> {
         w.write_all(json.as_bytes())
     })?;
     anisomesh::io::atomic_write(&dir.join(format!("{name}.csv")), |w| {
-        writeln!(w, "n,h,band,bc,inner,tau,error,paper_error,nodes,seconds")?;
+        writeln!(
+            w,
+            "n,h,band,bc,time,inner,tau,error,paper_error,nodes,seconds"
+        )?;
         for r in rows {
             writeln!(
                 w,
-                "{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{}",
                 r.n,
                 r.h,
                 r.band,
                 r.bc,
+                r.time,
                 r.inner,
                 r.tau,
                 r.error,
