@@ -107,6 +107,23 @@ fn random_metric_fields_never_break_the_mesh() {
             (v - expected).abs() < 1e-9 * expected,
             "case {case}: volume {v} vs {expected}"
         );
+        // Every boundary triangle of the box (and of its hole) lies exactly in its plane: its
+        // three vertices share one coordinate bit for bit, however often they moved.
+        for t in 0..a.mesh.n_tets() {
+            for i in 0..4 {
+                if a.mesh.neighbours[t][i] != anisomesh::mesh::NONE {
+                    continue;
+                }
+                let f = a
+                    .mesh
+                    .face_vertices(t, i)
+                    .map(|v| a.mesh.points[v as usize]);
+                assert!(
+                    (0..3).any(|k| f[0][k] == f[1][k] && f[1][k] == f[2][k]),
+                    "case {case}: boundary triangle {f:?} off its plane"
+                );
+            }
+        }
         let s = tet_stats(&a.mesh, &a.metric);
         assert!(s.quality_min > 0.0, "case {case}");
         worst_in_range = worst_in_range.min(s.edge_length_in_range);

@@ -65,6 +65,52 @@ pub struct EditMesh3 {
     pub now: u32,
 }
 
+/// `p` projected onto the plane through `p0` with unit normal `n`. Where the plane is
+/// perpendicular to a coordinate axis (the other two normal components below 1e-14), that
+/// coordinate is copied from `p0`, so a vertex of an axis-aligned face stays exactly in the
+/// plane however often it moves (a plain projection leaves rounding residues such as 1e-20
+/// that make the vertex's tetrahedra with a ridge slightly off the plane).
+#[inline]
+pub fn onto_plane(p0: DVec3, n: DVec3, p: DVec3) -> DVec3 {
+    let mut q = p - n * (p - p0).dot(n);
+    match plane_axis(n) {
+        Some(0) => q.x = p0.x,
+        Some(1) => q.y = p0.y,
+        Some(_) => q.z = p0.z,
+        None => {}
+    }
+    q
+}
+
+/// The coordinate axis a unit normal `n` points along (its other two components below
+/// 1e-14), if any.
+#[inline]
+fn plane_axis(n: DVec3) -> Option<usize> {
+    let a = n.abs();
+    if a.y < 1e-14 && a.z < 1e-14 {
+        Some(0)
+    } else if a.x < 1e-14 && a.z < 1e-14 {
+        Some(1)
+    } else if a.x < 1e-14 && a.y < 1e-14 {
+        Some(2)
+    } else {
+        None
+    }
+}
+
+/// Whether `p` lies in the plane through `p0` with unit normal `n`: exactly for a plane
+/// perpendicular to a coordinate axis (see [`onto_plane`]), to 1e-12 relative otherwise.
+#[inline]
+pub fn in_plane(p0: DVec3, n: DVec3, p: DVec3) -> bool {
+    match plane_axis(n) {
+        Some(k) => p[k] == p0[k],
+        None => {
+            let d = p - p0;
+            d.dot(n).abs() <= 1e-12 * (1.0 + d.length())
+        }
+    }
+}
+
 /// The sorted vertices of a triangle.
 #[inline]
 pub fn sorted3(mut f: [u32; 3]) -> [u32; 3] {

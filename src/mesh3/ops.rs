@@ -446,8 +446,7 @@ impl EditMesh3 {
         match self.vertex_kind(v) {
             VertexKind::Interior => {}
             VertexKind::Face(n) => {
-                let d = p - self.points[v as usize];
-                if d.dot(n).abs() > 1e-12 * (1.0 + d.length()) {
+                if !super::edit::in_plane(self.points[v as usize], n, p) {
                     return false;
                 }
             }

@@ -107,3 +107,25 @@ fn neighbours_and_face_labels() {
         Err(crate::Error::InvalidMesh(MeshDefect::BadLabel { .. }))
     ));
 }
+
+#[test]
+fn moves_in_an_axis_plane_keep_the_coordinate_exactly() {
+    use super::edit::{in_plane, onto_plane};
+    // A plane y = 0.3 whose normal came out of a cross product with a rounding residue.
+    let p0 = DVec3::new(0.1, 0.3, 0.7);
+    let n = DVec3::new(1e-17, -1.0, 3e-18);
+    let mut p = p0;
+    for k in 0..1000 {
+        let d = DVec3::new(0.013 * (k as f64).sin(), 0.01, -0.007 * (k as f64).cos());
+        p = onto_plane(p, n, p + d);
+        assert_eq!(p.y, 0.3);
+        assert!(in_plane(p0, n, p));
+    }
+    // One unit in the last place off the plane: refused (a tolerance of 1e-12 accepted it).
+    assert!(!in_plane(p0, n, p + DVec3::new(0.0, 1e-16, 0.0)));
+    // An oblique plane: projected to rounding.
+    let n = DVec3::new(1.0, 2.0, 2.0) / 3.0;
+    let q = onto_plane(p0, n, DVec3::new(1.0, -2.0, 0.5));
+    assert!((q - p0).dot(n).abs() < 1e-14);
+    assert!(in_plane(p0, n, q));
+}

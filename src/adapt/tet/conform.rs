@@ -24,6 +24,7 @@ use crate::adapt::cycle::Remesher;
 use crate::adapt::options::{AdaptOptions, AdaptReport, PassKind};
 use crate::error::Result;
 use crate::geom::DVec3;
+use crate::mesh3::edit::onto_plane;
 use crate::mesh3::VertexKind;
 use crate::metric::Sym3;
 use std::time::Instant;
@@ -192,7 +193,10 @@ pub(crate) fn length_smooth_pass(ctx: &mut Ctx<'_>) -> usize {
         let q0 = ctx.ball_quality(v);
         let floor = q0.min(Q_KEEP);
         for step in [1.0, 0.5, 0.25] {
-            let np = p + step * d;
+            let np = match normal {
+                Some(n) => onto_plane(p, n, p + step * d),
+                None => p + step * d,
+            };
             let m = f(np);
             let (e1, out1) = length_energy(ctx, np, &m, &nb);
             if e1 >= e0 || out1 > out0 {
@@ -233,6 +237,8 @@ fn record(
 
 /// The conformity loop (see the module docs), recorded in `rep`.
 pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptReport) -> Result<()> {
+    // The end game splits every long edge it finds: no insertion filter.
+    ctx.split_filter = 0.0;
     let mut share = in_range_share(ctx);
     for _ in 0..ROUNDS {
         let nc = record(ctx, PassKind::Collapse, opts, rep, collapse_pass)?

@@ -10,6 +10,7 @@
 
 use super::Ctx;
 use crate::geom::DVec3;
+use crate::mesh3::edit::onto_plane;
 use crate::mesh3::VertexKind;
 use crate::metric::Sym3;
 
@@ -92,12 +93,10 @@ pub(crate) fn optimise_vertex(ctx: &mut Ctx<'_>, v: u32) -> bool {
     while step > 0.024 {
         let mut moved = false;
         for &d in &dirs {
-            let np = p + step * d;
-            if let Some(n) = normal {
-                if (np - p0).dot(n).abs() > 1e-12 * (1.0 + (np - p0).length()) {
-                    continue;
-                }
-            }
+            let np = match normal {
+                Some(n) => onto_plane(p0, n, p + step * d),
+                None => p + step * d,
+            };
             let nm = f(np);
             let nq = ball_quality_at(ctx, v, np, &nm);
             if nq > q * 1.001

@@ -12,6 +12,7 @@
 
 use super::Ctx;
 use crate::geom::DVec3;
+use crate::mesh3::edit::{in_plane, onto_plane};
 use crate::mesh3::{signed_volume, VertexKind};
 use crate::metric::Sym3;
 
@@ -165,7 +166,7 @@ pub(crate) fn best_merge(ctx: &Ctx<'_>, a: u32, b: u32) -> Option<Merge> {
         }
         let mut pt = target / nbs.len().max(1) as f64;
         if let VertexKind::Face(n) = ka {
-            pt -= n * (pt - mid).dot(n);
+            pt = onto_plane(pa, n, pt);
         }
         cands.push((pt, f(pt)));
         // The topology of collapsing `a` onto `b` needs the link condition only (checked);
@@ -184,7 +185,7 @@ pub(crate) fn best_merge(ctx: &Ctx<'_>, a: u32, b: u32) -> Option<Merge> {
 fn on_plane(k: VertexKind, p0: DVec3, p: DVec3) -> bool {
     match k {
         VertexKind::Interior => true,
-        VertexKind::Face(n) => (p - p0).dot(n).abs() <= 1e-12 * (1.0 + (p - p0).length()),
+        VertexKind::Face(n) => in_plane(p0, n, p),
         VertexKind::Feature => false,
     }
 }

@@ -56,6 +56,12 @@ pub(crate) struct Ctx<'a> {
     pub last: [u32; 5],
     /// Quality of every tetrahedron at the start of the current swap pass (survey only).
     pub tq: Vec<f64>,
+    /// The insertion filter of the refinement passes: a split of an edge with an interior
+    /// end is refused when its new point is closer than this (metric length) to a vertex
+    /// inserted earlier in the same pass ([`split`]); 0 turns the filter off.
+    pub split_filter: f64,
+    /// The first vertex index created in the current split pass.
+    pub first_new: u32,
 }
 
 impl<'a> Ctx<'a> {
@@ -72,6 +78,8 @@ impl<'a> Ctx<'a> {
             pass: 0,
             last: [0; 5],
             tq: Vec::new(),
+            split_filter: split::FILTER,
+            first_new: 0,
         }
     }
 

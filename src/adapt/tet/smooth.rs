@@ -10,6 +10,7 @@
 use super::Ctx;
 use crate::adapt::pass::{run_pass, Operator};
 use crate::geom::DVec3;
+use crate::mesh3::edit::onto_plane;
 use crate::mesh3::VertexKind;
 use crate::metric::Sym3;
 
@@ -59,13 +60,11 @@ impl Operator<Ctx<'_>> for Smooth {
         }
         let q0 = ctx.ball_quality(v);
         for step in [1.0, 0.5, 0.25] {
-            let np = p + step * d;
-            if let Some(n) = normal {
-                // Exactly in the plane: the projected move is recomputed from the plane.
-                if (np - p).dot(n).abs() > 1e-12 * (1.0 + d.length()) {
-                    continue;
-                }
-            }
+            let np = match normal {
+                // Exactly in the plane (an axis-aligned plane's coordinate is kept exactly).
+                Some(n) => onto_plane(p, n, p + step * d),
+                None => p + step * d,
+            };
             let m = match ctx.source {
                 Some(f) => f(np),
                 None => ctx.metric[v as usize],
