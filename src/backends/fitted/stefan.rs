@@ -170,7 +170,7 @@ pub struct StefanOptions<'a> {
     /// How the level set is moved with the extended velocity (001 §6 step 8).
     pub advection: StefanAdvection,
     /// Restrict the temperature to the base mesh keeping `∫T`
-    /// ([`super::stefan_energy`]: the heat of the kink across the interface, which the plain
+    /// (the heat of the kink across the interface, which the plain
     /// restriction cuts off, is given back to the vertices of the cut triangles). Otherwise the
     /// base vertices keep their values.
     pub conservative_transfer: bool,
@@ -477,16 +477,9 @@ pub fn stefan_step(
     let vn = match o.flux {
         StefanFlux::P1Mean => stefan_velocity(m, REF_INSIDE, &on, &normals, &temp)?,
         StefanFlux::Quadratic => stefan_velocity_quadratic(m, REF_INSIDE, &on, &normals, &temp)?,
-        StefanFlux::Residual { smoothing_passes } => stefan_velocity_residual(
-            m,
-            &on,
-            &fm.interface_edges(),
-            &dual,
-            &temp_old,
-            &temp,
-            o.dt,
-            smoothing_passes,
-        )?,
+        StefanFlux::Residual { smoothing_passes } => {
+            stefan_velocity_residual(&fm, &on, &temp_old, &temp, o.dt, smoothing_passes)?
+        }
     };
     let iface: Vec<usize> = (0..n).filter(|&v| on[v]).collect();
     let max_vn = iface.iter().fold(0.0f64, |a, &v| a.max(vn[v].abs()));

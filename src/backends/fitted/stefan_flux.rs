@@ -12,6 +12,8 @@
 //! too few vertices for a quadratic (a thin arm, the outer boundary), the fit falls back to a
 //! linear one, and without any vertex the side's gradient is zero (an insulated side).
 
+use super::fit::FittedMesh;
+use super::stefan_energy::interface_dual_lengths;
 use crate::error::{Error, Result};
 use crate::flows::stefan::check_velocity_inputs;
 use crate::geom::simplex;
@@ -181,7 +183,7 @@ pub fn stefan_velocity_quadratic(
 }
 
 /// The normal velocity from the discrete heat balance of the heat step: at every interface
-/// vertex `i` with dual length `L_i > 0` (half its interface edges), `v_n = R_i / (Δt L_i)`,
+/// vertex `i` of the fitted mesh `fm` with dual length `L_i > 0` (half its interface edges), `v_n = R_i / (Δt L_i)`,
 /// `R_i = M_i (Tⁿ⁺¹_i − Tⁿ_i) + Δt (K Tⁿ⁺¹)_i` the residual of the implicit Euler step
 /// (lumped mass `M`, stiffness `K`) that the prescribed value at `i` leaves: the heat that step
 /// supplied through the interface near `i`, the weak form of `−[∂T/∂n]` (001 (6.4)) integrated
@@ -189,29 +191,29 @@ pub fn stefan_velocity_quadratic(
 /// the front's motion balances it (the energy `∫T − A` is conserved up to the advection's
 /// error). The residuals are noisy from vertex to vertex (the split of the flux between two
 /// neighbouring interface vertices depends on how the cut triangles are shaped), so they are
-/// smoothed along the interface edges `interface_edges` by `smoothing_passes` passes of a
+/// smoothed along the interface edges by `smoothing_passes` passes of a
 /// conservative diffusion (the sum of the residuals is kept). `t_old` is the temperature the step started from, before the interface values were
 /// set. Other vertices get 0.
 ///
 /// Errors: sizes that do not match the mesh, non-finite values, a non-positive `dt`.
 pub fn stefan_velocity_residual(
-    mesh: &Mesh2,
+    fm: &FittedMesh,
     on_interface: &[bool],
-    interface_edges: &[[u32; 2]],
-    dual_length: &[f64],
     t_old: &[f64],
     t_new: &[f64],
     dt: f64,
     smoothing_passes: usize,
 ) -> Result<Vec<f64>> {
+    let mesh = &fm.mesh;
+    let interface_edges = fm.interface_edges();
+    let dual_length = interface_dual_lengths(fm);
     let n = mesh.n_points();
     check_p1_field(n, t_old, "temperature")?;
     check_p1_field(n, t_new, "temperature")?;
-    if on_interface.len() != n || dual_length.len() != n {
+    if on_interface.len() != n {
         return Err(Error::InvalidInput(format!(
-            "Stefan velocity: the mesh has {n} vertices but the interface mask and lengths have {} and {}",
-            on_interface.len(),
-            dual_length.len()
+            "Stefan velocity: the mesh has {n} vertices but the interface mask has {}",
+            on_interface.len()
         )));
     }
     if !(dt.is_finite() && dt > 0.0) {
@@ -250,7 +252,7 @@ pub fn stefan_velocity_residual(
             })
             .collect();
         let mut next = r.clone();
-        for &[a, b] in interface_edges {
+        for &[a, b] in &interface_edges {
             let (a, b) = (a as usize, b as usize);
             let (la, lb) = (dual_length[a], dual_length[b]);
             if la > 0.0 && lb > 0.0 {
