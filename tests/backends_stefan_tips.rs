@@ -4,9 +4,8 @@
 //! splits later, as 001 shows).
 
 use anisomesh::backends::fitted::{
-    fit, stefan_step, FitOptions, StefanFlux, StefanOptions, StefanState,
+    fit, pentagon_seed, stefan_step, FitOptions, StefanFlux, StefanOptions, StefanState,
 };
-use anisomesh::levelset::redistance::redistance_geometric;
 use anisomesh::mesh::{GridPattern, Mesh2};
 use anisomesh::DVec2;
 
@@ -25,24 +24,7 @@ fn run(flux: StefanFlux, steps: usize) -> (Mesh2, Vec<f64>) {
         GridPattern::UnionJack,
     )
     .unwrap();
-    let corners: Vec<DVec2> = (0..5)
-        .map(|k| {
-            let a = std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * k as f64 / 5.0;
-            0.1 * DVec2::new(a.cos(), a.sin())
-        })
-        .collect();
-    let phi0: Vec<f64> = base
-        .points
-        .iter()
-        .map(|&p| {
-            (0..5).fold(f64::NEG_INFINITY, |m, k| {
-                let (a, b) = (corners[k], corners[(k + 1) % 5]);
-                let e = (b - a).normalize();
-                m.max((p - a).dot(DVec2::new(e.y, -e.x)))
-            })
-        })
-        .collect();
-    let phi = redistance_geometric(&base, &phi0).unwrap();
+    let phi = pentagon_seed(&base, 0.1).unwrap();
     let temperature = phi
         .iter()
         .map(|&f| if f < 0.0 { 0.0 } else { -0.5 })

@@ -46,8 +46,20 @@ pub struct StefanArgs {
     /// One-sided gradients of the Stefan condition v_n = -[dT/dn] (001 (6.4)): quadratic
     /// (least-squares quadratic per side over two rings, second order; the default for frank) or
     /// p1 (area-weighted mean of the P1 gradients, first order; the default for pentagon, star).
-    #[arg(long, value_parser = ["p1", "quadratic"])]
+    /// residual (the heat the heat step supplied at each interface vertex per unit length and
+    /// time: the front's latent heat balances it, conserving the energy).
+    #[arg(long, value_parser = ["p1", "quadratic", "residual"])]
     flux: Option<String>,
+    /// Transfer of the temperature from the fitted mesh to the base mesh (pentagon, star):
+    /// plain (the base vertices keep their values) or conservative (the heat of the kink
+    /// across the interface, which the plain restriction cuts off, given back to the vertices of
+    /// the cut triangles: the same heat content on both meshes).
+    #[arg(long, default_value = "plain", value_parser = ["plain", "conservative"])]
+    transfer: String,
+    /// With --flux residual: passes of the conservative smoothing of the residuals along the
+    /// interface.
+    #[arg(long, default_value_t = 8)]
+    smoothing_passes: usize,
     /// Curvature of the Gibbs–Thomson relation (pentagon, star): fit (least-squares parabola
     /// through the interface vertices within 3h along the interface, the default) or averaging
     /// (001 (5.2) at the base vertices interpolated onto the interface, as 001 §6).
@@ -85,6 +97,9 @@ fn extension(a: &StefanArgs, h: f64) -> VelocityExtension {
 fn flux(a: &StefanArgs) -> StefanFlux {
     match a.flux.as_deref() {
         Some("quadratic") => StefanFlux::Quadratic,
+        Some("residual") => StefanFlux::Residual {
+            smoothing_passes: a.smoothing_passes,
+        },
         Some(_) => StefanFlux::P1Mean,
         None if a.case == "frank" => StefanFlux::Quadratic,
         None => StefanFlux::P1Mean,
@@ -211,6 +226,7 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
         curvature,
         keep_interface: a.redistance == "keep",
         full_redistance_every: a.full_redistance_every,
+        conservative_transfer: a.transfer == "conservative",
         advection: if a.advection == "levelset" {
             StefanAdvection::LevelSet
         } else {
@@ -253,6 +269,30 @@ fn paper_case(a: &StefanArgs) -> Result<()> {
             s.max_interface_temperature,
             s.extension_unknowns,
             s.cg_iterations
+        );
+    }
+    println!(
+        "energy balance from t = 0: heat in transfer to the fitted mesh, at the interface \
+         (of it by the interface values), in transfer back; the front's latent heat; area by \
+         snapping, advection, redistancing"
+    );
+    println!(
+        "{:>7} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "t", "in", "iface", "assign", "out", "front", "snap", "advect", "redist"
+    );
+    for s in &rep.snapshots {
+        let b = &s.budget;
+        println!(
+            "{:>7.4} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e}",
+            s.time,
+            b.transfer_in,
+            b.interface_heat,
+            b.assignment_heat,
+            b.transfer_out,
+            b.front_heat,
+            b.area_snap,
+            b.area_advection,
+            b.area_redistance
         );
     }
     println!("{:.1} s", rep.seconds);

@@ -8,7 +8,9 @@
 //! Files: `fit.rs` (cutting and labelling), `curvature.rs` (curvature by local averaging,
 //! 001 (5.2)), `stefan.rs` (the Stefan loop of 001 §6 on the fitted mesh), `reinit.rs` (the
 //! Poisson reinitialisation of 001 §4), `backend.rs` (the back-end contract on a uniform base
-//! grid), `extension.rs` (the velocity extension of 001 §3).
+//! grid), `extension.rs` (the velocity extension of 001 §3), `stefan_flux.rs` (the Stefan velocity from
+//! quadratic one-sided gradients or from the heat step's residuals), `stefan_energy.rs` (the
+//! energy balance and the conservative transfer), `stefan_seed.rs` (the pentagon seed).
 
 mod backend;
 mod curvature;
@@ -17,7 +19,9 @@ mod fit;
 mod reinit;
 pub mod solvation;
 mod stefan;
+mod stefan_energy;
 mod stefan_flux;
+mod stefan_seed;
 
 pub use backend::{FittedBackend, FittedOptions, FittedRedistancing};
 pub use curvature::{
@@ -34,4 +38,6 @@ pub use stefan::{
     circle_deviation, stefan_step, Anisotropy, Coefficient, StefanAdvection, StefanCurvature,
     StefanFlux, StefanOptions, StefanState, StefanStepReport, VelocityExtension,
 };
-pub use stefan_flux::stefan_velocity_quadratic;
+pub use stefan_energy::StefanBudget;
+pub use stefan_flux::{stefan_velocity_quadratic, stefan_velocity_residual};
+pub use stefan_seed::pentagon_seed;

@@ -21,10 +21,13 @@
 use super::curvature::{interface_fit_curvature, vertex_curvature, vertex_normals};
 use super::extension::{extend_velocity, ExtensionKind, ExtensionOptions};
 use super::fit::{fit, FitOptions, FittedMesh, REF_INSIDE};
-use super::stefan_flux::stefan_velocity_quadratic;
+use super::stefan_energy::{interface_dual_lengths, restrict_conservative, StefanBudget};
+use super::stefan_flux::{stefan_velocity_quadratic, stefan_velocity_residual};
 use crate::error::{Error, Result};
+use crate::fem::p1::lumped_mass;
 use crate::flows::stefan::{heat_step, stefan_velocity};
 use crate::geom::{simplex, DVec2};
+use crate::levelset::interface::enclosed_area;
 use crate::levelset::redistance::redistance_geometric;
 use crate::mesh::{check_p1_field, Mesh2};
 
@@ -68,6 +71,8 @@ pub struct StefanStepReport {
     pub extension_unknowns: usize,
     /// Largest `|T|` prescribed on the interface by (6.2).
     pub max_interface_temperature: f64,
+    /// The step's terms of the energy balance `∫T − A` (latent heat 1).
+    pub budget: StefanBudget,
 }
 
 /// How the interface velocity is extended off the interface (001 §6 step 6).
@@ -164,6 +169,11 @@ pub struct StefanOptions<'a> {
     pub curvature: StefanCurvature,
     /// How the level set is moved with the extended velocity (001 §6 step 8).
     pub advection: StefanAdvection,
+    /// Restrict the temperature to the base mesh keeping `∫T`
+    /// (the heat of the kink across the interface, which the plain
+    /// restriction cuts off, is given back to the vertices of the cut triangles). Otherwise the
+    /// base vertices keep their values.
+    pub conservative_transfer: bool,
 }
 
 /// The level-set update of 001 §6 step 8 on the base vertices of the band.
@@ -206,6 +216,13 @@ pub enum StefanFlux {
     /// Each side's least-squares quadratic through the vertex over two rings
     /// ([`super::stefan_velocity_quadratic`]): second order for smooth `T`.
     Quadratic,
+    /// The heat the heat step supplied at each interface vertex (its residual) per unit
+    /// interface length and time ([`super::stefan_velocity_residual`]): the front's latent heat
+    /// equals the heat supplied, so `∫T − A` is conserved.
+    Residual {
+        /// Passes of the conservative smoothing along the interface.
+        smoothing_passes: usize,
+    },
 }
 
 impl<'a> StefanOptions<'a> {
@@ -236,6 +253,7 @@ impl<'a> StefanOptions<'a> {
                 half_width: 3.0 * h,
             },
             advection: StefanAdvection::Plain,
+            conservative_transfer: false,
         }
     }
 }
@@ -440,14 +458,32 @@ pub fn stefan_step(
             }
         }
     }
+    let mass_base = lumped_mass(base)?;
+    let mass_fit = lumped_mass(m)?;
+    let heat = |mass: &[f64], t: &[f64]| -> f64 { mass.iter().zip(t).map(|(a, b)| a * b).sum() };
+    let area_old = enclosed_area(base, &state.phi)?;
+    let area_fit = fm.area_inside();
+    let heat_base_old = heat(&mass_base, &state.temperature);
+    let heat_fit_old = heat(&mass_fit, &temp);
+    let temp_old = temp.clone();
+    let assignment_heat: f64 = (0..n)
+        .filter(|&v| on[v])
+        .map(|v| mass_fit[v] * (values[v] - temp[v]))
+        .sum();
     let (temp, cg) = heat_step(m, &fixed, &values, &temp, o.dt)?;
+    let heat_fit_new = heat(&mass_fit, &temp);
     // Step 5: the Stefan condition (6.4).
+    let dual = interface_dual_lengths(&fm);
     let vn = match o.flux {
         StefanFlux::P1Mean => stefan_velocity(m, REF_INSIDE, &on, &normals, &temp)?,
         StefanFlux::Quadratic => stefan_velocity_quadratic(m, REF_INSIDE, &on, &normals, &temp)?,
+        StefanFlux::Residual { smoothing_passes } => {
+            stefan_velocity_residual(&fm, &on, &temp_old, &temp, o.dt, smoothing_passes)?
+        }
     };
     let iface: Vec<usize> = (0..n).filter(|&v| on[v]).collect();
     let max_vn = iface.iter().fold(0.0f64, |a, &v| a.max(vn[v].abs()));
+    let front_heat = o.dt * iface.iter().map(|&v| vn[v] * dual[v]).sum::<f64>();
     // Steps 6–7: extension, unrefinement.
     let (velocity, unknowns) = match o.extension {
         VelocityExtension::Averaged { smoothing } => {
@@ -477,6 +513,7 @@ pub fn stefan_step(
             *p -= o.dt * v * g;
         }
     }
+    let area_adv = enclosed_area(base, &phi)?;
     let mut redistanced = redistance_geometric(base, &phi)?;
     if o.keep_interface {
         for t in base.live_tris() {
@@ -490,8 +527,23 @@ pub fn stefan_step(
             }
         }
     }
+    let area_new = enclosed_area(base, &redistanced)?;
     state.phi = redistanced;
-    state.temperature = fm.restrict_to_base(&temp)?;
+    state.temperature = if o.conservative_transfer {
+        restrict_conservative(&fm, base, &temp, &mass_base)
+    } else {
+        fm.restrict_to_base(&temp)?
+    };
+    let budget = StefanBudget {
+        transfer_in: heat_fit_old - heat_base_old,
+        interface_heat: heat_fit_new - heat_fit_old,
+        assignment_heat,
+        front_heat,
+        transfer_out: heat(&mass_base, &state.temperature) - heat_fit_new,
+        area_snap: area_fit - area_old,
+        area_advection: area_adv - area_fit,
+        area_redistance: area_new - area_adv,
+    };
     state.velocity = velocity;
     state.time = t_new;
     Ok(StefanStepReport {
@@ -500,6 +552,7 @@ pub fn stefan_step(
         cg_iterations: cg.iterations,
         extension_unknowns: unknowns,
         max_interface_temperature: max_t_gamma,
+        budget,
     })
 }
 

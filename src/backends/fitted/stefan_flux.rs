@@ -12,10 +12,13 @@
 //! too few vertices for a quadratic (a thin arm, the outer boundary), the fit falls back to a
 //! linear one, and without any vertex the side's gradient is zero (an insulated side).
 
-use crate::error::Result;
+use super::fit::FittedMesh;
+use super::stefan_energy::interface_dual_lengths;
+use crate::error::{Error, Result};
 use crate::flows::stefan::check_velocity_inputs;
+use crate::geom::simplex;
 use crate::geom::DVec2;
-use crate::mesh::Mesh2;
+use crate::mesh::{check_p1_field, Mesh2};
 use rayon::prelude::*;
 
 /// Vertex-to-triangle incidence of the live triangles (CSR: `start`, `tris`).
@@ -175,6 +178,98 @@ pub fn stefan_velocity_quadratic(
                 return 0.0;
             }
             -(gradient(v, 1) - gradient(v, 0)).dot(normals[v])
+        })
+        .collect())
+}
+
+/// The normal velocity from the discrete heat balance of the heat step: at every interface
+/// vertex `i` of the fitted mesh `fm` with dual length `L_i > 0` (half its interface edges), `v_n = R_i / (Δt L_i)`,
+/// `R_i = M_i (Tⁿ⁺¹_i − Tⁿ_i) + Δt (K Tⁿ⁺¹)_i` the residual of the implicit Euler step
+/// (lumped mass `M`, stiffness `K`) that the prescribed value at `i` leaves: the heat that step
+/// supplied through the interface near `i`, the weak form of `−[∂T/∂n]` (001 (6.4)) integrated
+/// over the step. `Σ v_n,i L_i Δt` is exactly the heat the interface supplied, so the latent heat of
+/// the front's motion balances it (the energy `∫T − A` is conserved up to the advection's
+/// error). The residuals are noisy from vertex to vertex (the split of the flux between two
+/// neighbouring interface vertices depends on how the cut triangles are shaped), so they are
+/// smoothed along the interface edges by `smoothing_passes` passes of a
+/// conservative diffusion (the sum of the residuals is kept). `t_old` is the temperature the step started from, before the interface values were
+/// set. Other vertices get 0.
+///
+/// Errors: sizes that do not match the mesh, non-finite values, a non-positive `dt`.
+pub fn stefan_velocity_residual(
+    fm: &FittedMesh,
+    on_interface: &[bool],
+    t_old: &[f64],
+    t_new: &[f64],
+    dt: f64,
+    smoothing_passes: usize,
+) -> Result<Vec<f64>> {
+    let mesh = &fm.mesh;
+    let interface_edges = fm.interface_edges();
+    let dual_length = interface_dual_lengths(fm);
+    let n = mesh.n_points();
+    check_p1_field(n, t_old, "temperature")?;
+    check_p1_field(n, t_new, "temperature")?;
+    if on_interface.len() != n {
+        return Err(Error::InvalidInput(format!(
+            "Stefan velocity: the mesh has {n} vertices but the interface mask has {}",
+            on_interface.len()
+        )));
+    }
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(Error::InvalidInput(format!(
+            "Stefan velocity: the time step must be finite and positive (got {dt})"
+        )));
+    }
+    let mut r = vec![0.0f64; n];
+    for t in mesh.live_tris() {
+        let tri = mesh.tris[t];
+        if !tri.iter().any(|&v| on_interface[v as usize]) {
+            continue;
+        }
+        let p = mesh.tri_points(t);
+        let a = mesh.tri_area(t).abs();
+        let g = simplex::p1_gradients(&p);
+        let grad_t = simplex::p1_gradient(&p, &tri.map(|v| t_new[v as usize]));
+        for (k, &v) in tri.iter().enumerate() {
+            let v = v as usize;
+            if on_interface[v] {
+                r[v] += a / 3.0 * (t_new[v] - t_old[v]) + dt * a * grad_t.dot(g[k]);
+            }
+        }
+    }
+    // Conservative smoothing along the interface: per pass and interface edge `(a, b)`, the heat
+    // `½ (q_b − q_a) L_a L_b / (L_a + L_b)` (`q = R / L`) moves from `b` to `a`; the sum of `R`
+    // is unchanged and every `q` moves at most half-way towards its neighbours' (stable).
+    for _ in 0..smoothing_passes {
+        let q: Vec<f64> = (0..n)
+            .map(|v| {
+                if dual_length[v] > 0.0 {
+                    r[v] / dual_length[v]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let mut next = r.clone();
+        for &[a, b] in &interface_edges {
+            let (a, b) = (a as usize, b as usize);
+            let (la, lb) = (dual_length[a], dual_length[b]);
+            if la > 0.0 && lb > 0.0 {
+                let f = 0.25 * (q[b] - q[a]) * la * lb / (la + lb);
+                next[a] += f;
+                next[b] -= f;
+            }
+        }
+        r = next;
+    }
+    Ok((0..n)
+        .map(|v| {
+            if on_interface[v] && dual_length[v] > 0.0 {
+                r[v] / (dt * dual_length[v])
+            } else {
+                0.0
+            }
         })
         .collect())
 }

@@ -9,8 +9,8 @@
 
 use crate::app::plot::{lines_png, LinesPlot, Series, SeriesStyle};
 use anisomesh::backends::fitted::{
-    fit, stefan_step, FitOptions, StefanAdvection, StefanCurvature, StefanFlux, StefanOptions,
-    StefanState, VelocityExtension,
+    fit, pentagon_seed, stefan_step, FitOptions, StefanAdvection, StefanBudget, StefanCurvature,
+    StefanFlux, StefanOptions, StefanState, VelocityExtension,
 };
 use anisomesh::backends::fitted::{Anisotropy, Coefficient};
 use anisomesh::error::{Error, Result};
@@ -67,6 +67,8 @@ pub struct Case {
     pub full_redistance_every: usize,
     /// The level-set update.
     pub advection: StefanAdvection,
+    /// Restrict the temperature to the base mesh keeping its heat content.
+    pub conservative_transfer: bool,
     /// The seed's size: the pentagon's circumradius, the star's mean radius.
     pub seed_radius: f64,
     /// Number of snapshot intervals.
@@ -89,6 +91,8 @@ pub struct Snapshot {
     /// Energy balance `(∫ T − A) − (∫ T₀ − A₀)`: zero for the exact Stefan problem with
     /// insulated walls (latent heat 1: the solidified area warms the liquid by as much).
     pub energy_drift: f64,
+    /// The terms of the energy balance summed from t = 0.
+    pub budget: StefanBudget,
     /// Vertices of the fitted mesh.
     pub fitted_vertices: usize,
     /// Largest `|v_n|` of the last step.
@@ -134,6 +138,8 @@ pub struct PaperReport {
     pub keep_interface: bool,
     /// The level-set update.
     pub advection: String,
+    /// Whether the temperature was restricted to the base mesh keeping its heat content.
+    pub conservative_transfer: bool,
     /// The seed's size.
     pub seed_radius: f64,
     /// With `keep_interface`: every this many steps every vertex was redistanced (0: never).
@@ -162,6 +168,7 @@ fn snapshot(
     st: &StefanState,
     step: usize,
     last: Option<&anisomesh::backends::fitted::StefanStepReport>,
+    budget: StefanBudget,
 ) -> Result<Snapshot> {
     let fm = fit(base, &st.phi, &FitOptions::default())?;
     let heat: f64 = lumped_mass(base)?
@@ -186,6 +193,7 @@ fn snapshot(
         interface_length: fm.interface_length(),
         heat,
         energy_drift: 0.0,
+        budget,
         fitted_vertices: last.map_or(fm.mesh.n_points(), |r| r.fitted_vertices),
         max_vn: last.map_or(0.0, |r| r.max_vn),
         max_interface_temperature: last.map_or(0.0, |r| r.max_interface_temperature),
@@ -209,37 +217,20 @@ pub fn initial(seed: Seed, n: usize, radius: f64) -> Result<(Mesh2, Vec<f64>)> {
         n,
         GridPattern::UnionJack,
     )?;
-    let phi0: Vec<f64> = match seed {
-        Seed::Pentagon => {
-            let corners: Vec<DVec2> = (0..5)
-                .map(|k| {
-                    let a =
-                        std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * k as f64 / 5.0;
-                    radius * DVec2::new(a.cos(), a.sin())
+    let phi = match seed {
+        Seed::Pentagon => pentagon_seed(&base, radius)?,
+        Seed::Star => {
+            let phi0: Vec<f64> = base
+                .points
+                .iter()
+                .map(|p| {
+                    let th = p.y.atan2(p.x);
+                    p.length() - radius * (1.0 + STAR_AMPLITUDE * (8.0 * th).cos())
                 })
                 .collect();
-            // Largest signed distance to the edge lines: negative exactly inside the pentagon.
-            base.points
-                .iter()
-                .map(|&p| {
-                    (0..5).fold(f64::NEG_INFINITY, |m, k| {
-                        let (a, b) = (corners[k], corners[(k + 1) % 5]);
-                        let e = (b - a).normalize();
-                        m.max((p - a).dot(DVec2::new(e.y, -e.x)))
-                    })
-                })
-                .collect()
+            redistance_geometric(&base, &phi0)?
         }
-        Seed::Star => base
-            .points
-            .iter()
-            .map(|p| {
-                let th = p.y.atan2(p.x);
-                p.length() - radius * (1.0 + STAR_AMPLITUDE * (8.0 * th).cos())
-            })
-            .collect(),
     };
-    let phi = redistance_geometric(&base, &phi0)?;
     Ok((base, phi))
 }
 
@@ -279,18 +270,21 @@ pub fn run(c: &Case) -> Result<PaperReport> {
     opts.curvature = c.curvature;
     opts.keep_interface = c.keep_interface;
     opts.advection = c.advection;
+    opts.conservative_transfer = c.conservative_transfer;
     opts.eps_c = c.eps_c;
     opts.eps_v = c.eps_v;
     let steps = (t_end / dt).round().max(1.0) as usize;
     let every = (steps / c.snapshots.max(1)).max(1);
     let start = Instant::now();
-    let mut snaps = vec![snapshot(&base, &st, 0, None)?];
+    let mut budget = StefanBudget::default();
+    let mut snaps = vec![snapshot(&base, &st, 0, None, budget)?];
     for k in 1..=steps {
         opts.keep_interface =
             c.keep_interface && !(c.full_redistance_every > 0 && k % c.full_redistance_every == 0);
         let rep = stefan_step(&base, &mut st, &opts)?;
+        budget = budget.add(&rep.budget);
         if k % every == 0 || k == steps {
-            snaps.push(snapshot(&base, &st, k, Some(&rep))?);
+            snaps.push(snapshot(&base, &st, k, Some(&rep), budget)?);
         }
     }
     let e0 = snaps[0].heat - snaps[0].area;
@@ -310,6 +304,7 @@ pub fn run(c: &Case) -> Result<PaperReport> {
         curvature: format!("{:?}", c.curvature),
         keep_interface: c.keep_interface,
         advection: format!("{:?}", c.advection),
+        conservative_transfer: c.conservative_transfer,
         seed_radius: c.seed_radius,
         full_redistance_every: c.full_redistance_every,
         seconds: start.elapsed().as_secs_f64(),
