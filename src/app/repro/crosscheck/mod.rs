@@ -121,6 +121,18 @@ pub fn sphere_resolutions(res: Resolution, backend: &str) -> Vec<f64> {
     }
 }
 
+/// The time step of a 3D level-set back end on the sphere at resolution `h`: `h²` for the band
+/// (000's second-order regime), `h²/4` for the adapted mesh, whose semi-implicit Euler step is
+/// first order in time (at `τ = h²` its time error, 1.1e-2 at h = 0.2, exceeds its spatial
+/// error).
+pub fn sphere_tau(backend: &str, h: f64) -> f64 {
+    if backend == "adapted" {
+        0.25 * h * h
+    } else {
+        h * h
+    }
+}
+
 /// How much to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum Resolution {

@@ -131,7 +131,7 @@ pub fn sphere_mcf(
                 ),
                 resolution: h,
             })?;
-            let steps = (t_end / (h * h)).round().max(1.0) as usize;
+            let steps = (t_end / super::sphere_tau(name, h)).round().max(1.0) as usize;
             for _ in 0..steps {
                 b.advance_mean_curvature(t_end / steps as f64)?;
             }
