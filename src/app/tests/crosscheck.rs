@@ -96,7 +96,10 @@ fn tiny_crosscheck_converges_and_writes() {
     // the P2 surface's.
     let a: Vec<&crosscheck::Row> = s.rows_of("adapted").collect();
     assert_eq!(a.len(), 2);
-    assert!(a[1].error < 4e-3 && a[1].error <= a[0].error * 1.05, "{a:?}");
+    assert!(
+        a[1].error < 4e-3 && a[1].error <= a[0].error * 1.05,
+        "{a:?}"
+    );
     let p2 = s.rows_of("parametric P2").last().unwrap().value.unwrap();
     assert!((a[1].value.unwrap() - p2).abs() < 4e-3 + 1e-3, "{a:?} {p2}");
 

@@ -62,8 +62,8 @@ mod tests {
             ..StepCost::default()
         };
         let plane: Vec<f64> = m.points.iter().map(|p| p.x + 0.5 * p.y - 0.1).collect();
-        let next = semi_implicit_step(&m.points, &m.tets, &plane, 0.01, 1e-3, &opts, &mut cost)
-            .unwrap();
+        let next =
+            semi_implicit_step(&m.points, &m.tets, &plane, 0.01, 1e-3, &opts, &mut cost).unwrap();
         let drift = plane
             .iter()
             .zip(&next)

@@ -300,13 +300,8 @@ impl LevelSetBackend<D3> for AdaptedBackend3 {
         let t0 = Instant::now();
         let mut rep = StepReport::begin();
         let (ta, tb) = (self.time, self.time + dt);
-        let n = advection_substeps::<D3>(
-            &self.mesh.points,
-            velocity,
-            (ta, tb),
-            self.h,
-            "advection",
-        )?;
+        let n =
+            advection_substeps::<D3>(&self.mesh.points, velocity, (ta, tb), self.h, "advection")?;
         let tau = dt / n as f64;
         let loc = TetLocator::new(&self.mesh.points, &self.mesh.tets)?;
         for k in 0..n {

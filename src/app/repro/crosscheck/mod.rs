@@ -17,10 +17,10 @@ mod problems;
 pub mod table41;
 
 use crate::app::plot::{loglog_png, LogLogPlot, Series};
+use anisomesh::backends::adapted::AdaptedBackend3;
 use anisomesh::backends::dtgrid::plane::{DtGrid2Backend, DtGrid2Options};
 use anisomesh::backends::dtgrid::DtGridBackend;
 use anisomesh::backends::fitted::FittedBackend;
-use anisomesh::backends::adapted::AdaptedBackend3;
 use anisomesh::backends::{AdaptedBackend, BuildSpec, LevelSetBackend, D2, D3};
 use anisomesh::error::{Error, Result};
 use serde::Serialize;
