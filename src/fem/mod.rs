@@ -6,6 +6,8 @@
 //!   discrete divergence and its transpose).
 //! - [`assembly`]: deterministic parallel element assembly.
 //! - [`p1`]: P1 mass, lumped mass, stiffness (scalar or tensor coefficient), load, errors.
+//! - [`p1_simplex`]: P1 on triangles or tetrahedra from points and cells (weighted lumped mass,
+//!   per-cell stiffness, cell gradients).
 //! - [`p1_bubble`]: the MINI element (P1-bubble / P1) with the bubble condensed.
 //! - [`q1`]: the Q1 element on the reference square/cube (shape functions, tensor Gauss rules,
 //!   lumped mass, weighted stiffness).
@@ -18,6 +20,7 @@ pub mod dirichlet;
 pub mod lagrange;
 pub mod p1;
 pub mod p1_bubble;
+pub mod p1_simplex;
 pub mod q1;
 pub mod quadrature;
 pub mod rect_csr;

@@ -48,11 +48,18 @@
 //!   correction of 004 §5.1.
 //! - **Curvature**: `div(∇u/|∇u|)` from the recovered gradient and Hessian, sampled where the
 //!   zero level crosses the edges.
+//!
+//! In 3D, [`AdaptedBackend3`] (`tet.rs`) is the adapted tetrahedral mesh of 004 §5 with 000's
+//! semi-implicit mean curvature step (2.4)–(2.5) on it (`mcf3.rs`).
 
 mod cubic;
 mod curvature;
 mod mcf;
+mod mcf3;
 mod source;
+mod tet;
+
+pub use tet::{Adapted3Options, AdaptedBackend3};
 
 use super::{
     check_dt, BuildSpec, CurvatureSamples, LevelSetBackend, StepReport, VelocityField, D2,

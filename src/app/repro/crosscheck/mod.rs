@@ -4,7 +4,8 @@
 //!
 //! Problems ([`problems`]): the circle shrinking by curvature (`R(t) = √(R0² − 2t)`) through the
 //! level-set back ends of [`level_set_backends`] and the parametric curves of 002; the sphere
-//! shrinking by mean curvature (`R(t) = √(R0² − 4t)`) with parametric P1 and P2 surfaces; the
+//! shrinking by mean curvature (`R(t) = √(R0² − 4t)`) through the 3D level-set back ends of
+//! [`level_set_backends_3d`] and parametric P1 and P2 surfaces; the
 //! interface curvature of a circle and of an ellipse given by a non-distance implicit function;
 //! Zalesak's slotted disk after one revolution (area and perimeter errors) through the level-set
 //! back ends.
@@ -16,6 +17,7 @@ mod problems;
 pub mod table41;
 
 use crate::app::plot::{loglog_png, LogLogPlot, Series};
+use anisomesh::backends::adapted::AdaptedBackend3;
 use anisomesh::backends::dtgrid::plane::{DtGrid2Backend, DtGrid2Options};
 use anisomesh::backends::dtgrid::DtGridBackend;
 use anisomesh::backends::fitted::FittedBackend;
@@ -82,10 +84,53 @@ pub fn circle_h0(backend: &str) -> f64 {
     }
 }
 
+/// The number of circle levels of a level-set back end: [`Resolution::levels`], but at most 2
+/// for the fitted mesh below [`Resolution::Full`] (its third level, 160,801 vertices, took
+/// about 60 s of the default run's 100; its two levels still bracket the common error of the
+/// circle, so its dof for that error are interpolated between them).
+pub fn circle_levels(res: Resolution, backend: &str) -> usize {
+    if backend == "fitted" && res != Resolution::Full {
+        res.levels().min(2)
+    } else {
+        res.levels()
+    }
+}
+
 /// The 3D level-set back ends the cross-check runs on the shrinking sphere, beside the
 /// parametric surfaces: adding one is one line here.
 pub fn level_set_backends_3d() -> Vec<(&'static str, Build3)> {
-    vec![entry3::<DtGridBackend>("dtgrid")]
+    vec![
+        entry3::<AdaptedBackend3>("adapted"),
+        entry3::<DtGridBackend>("dtgrid"),
+    ]
+}
+
+/// The resolutions of a 3D level-set back end on the sphere: the band at `h = 0.2 / 2^k`
+/// ([`Resolution::levels_3d`] levels; a level costs about 8× the one before), the adapted
+/// tetrahedral mesh at `h = 0.2 / √2^k` ([`Resolution::levels`] levels: its vertices grow
+/// about like `1/h`, and each level is one tetrahedral adaptation).
+pub fn sphere_resolutions(res: Resolution, backend: &str) -> Vec<f64> {
+    if backend == "adapted" {
+        (0..res.levels())
+            .map(|k| 0.2 / 2f64.sqrt().powi(k as i32))
+            .collect()
+    } else {
+        (0..res.levels_3d())
+            .map(|k| 0.2 / 2f64.powi(k as i32))
+            .collect()
+    }
+}
+
+/// The time step of a 3D level-set back end on the sphere at resolution `h`: `h²` for the band
+/// (000's second-order regime), `h²/4` for the adapted mesh, whose semi-implicit Euler step is
+/// first order in time (at `τ = h²` its time error, 1.1e-2 at h = 0.2, exceeds its spatial
+/// error).
+pub fn sphere_tau(backend: &str, h: f64) -> f64 {
+    if backend == "adapted" {
+        0.25 * h * h
+    } else {
+        h * h
+    }
 }
 
 /// How much to run.
@@ -109,8 +154,8 @@ impl Resolution {
         }
     }
 
-    /// The number of levels of the 3D level-set back ends on the sphere: two, three for
-    /// [`Resolution::Full`] (the third DT-Grid level, `h = 0.05`, takes minutes).
+    /// The number of levels of the DT-Grid band on the sphere: two, three for
+    /// [`Resolution::Full`] (the third level, `h = 0.05`, takes minutes).
     pub fn levels_3d(self) -> usize {
         match self {
             Resolution::Full => 3,
@@ -216,12 +261,15 @@ pub struct CrossReport {
 /// a Zalesak run fills two problems).
 pub fn planned_runs(res: Resolution) -> usize {
     let l = res.levels();
-    let (n2, n3) = (level_set_backends().len(), level_set_backends_3d().len());
-    let zalesak: usize = level_set_backends()
+    let two = level_set_backends();
+    let circle: usize = two.iter().map(|(name, _)| circle_levels(res, name)).sum();
+    let sphere: usize = level_set_backends_3d()
         .iter()
-        .map(|(name, _)| zalesak_levels(res, name))
+        .map(|(name, _)| sphere_resolutions(res, name).len())
         .sum();
-    3 * l * (n2 + 2) + res.levels_3d() * n3 + 2 * l + zalesak
+    let zalesak: usize = two.iter().map(|(name, _)| zalesak_levels(res, name)).sum();
+    // Circle (+ 2 parametric), sphere (+ 2 parametric), two curvatures (+ 2 parametric each).
+    circle + 2 * l + sphere + 2 * l + 2 * l * (two.len() + 2) + zalesak
 }
 
 /// The number of Zalesak levels of a level-set back end: at most 3 (a revolution is the

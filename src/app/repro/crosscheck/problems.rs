@@ -33,7 +33,8 @@ fn spec<'a>(shape: &'a dyn Shape, h: f64) -> BuildSpec<'a, D2> {
 
 /// The circle shrinking by curvature from `R0 = 0.5` to `T = 0.06`: the error of the radius
 /// `√(A/π)` of the enclosed area `A` against `√(R0² − 2T)`. Level-set back ends at
-/// `h = h0 / 2^k` ([`super::circle_h0`]: 0.02, the band 0.04) with `dt ≈ 0.4h`; parametric curves with `16·2^k` vertices and `τ ∝ h²`.
+/// `h = h0 / 2^k` ([`super::circle_h0`]: 0.02, the band 0.04; [`super::circle_levels`]) with
+/// `dt ≈ 0.4h`; parametric curves with `16·2^k` vertices and `τ ∝ h²`.
 pub fn circle_mcf(
     res: Resolution,
     backends: &[(&'static str, Build2)],
@@ -46,7 +47,7 @@ pub fn circle_mcf(
         radius: R0,
     };
     for (name, build) in backends {
-        for k in 0..res.levels() {
+        for k in 0..super::circle_levels(res, name) {
             let h = super::circle_h0(name) / 2f64.powi(k as i32);
             let start = Instant::now();
             let mut b = build(&spec(&circle, h))?;
@@ -107,9 +108,9 @@ pub fn circle_mcf(
 
 /// The sphere shrinking by mean curvature from `R0 = 2` to `T = 0.1` (002): the error of the
 /// averaged radius, parametric P1 and P2 from icosahedral level 2, `τ = 0.02` divided by 4 per
-/// level; the 3D level-set back ends in `[−2.5, 2.5]³` at `h = 0.2 / 2^k` with `τ = h²`
-/// ([`Resolution::levels_3d`] levels: a level costs about 8× the one before), the
-/// error of the radius `(3V/4π)^{1/3}` of the enclosed volume.
+/// level; the 3D level-set back ends in `[−2.5, 2.5]³` at the resolutions of
+/// [`super::sphere_resolutions`] with `τ ≈ h²`, the error of the radius `(3V/4π)^{1/3}` of the
+/// enclosed volume.
 pub fn sphere_mcf(
     res: Resolution,
     backends: &[(&'static str, Build3)],
@@ -120,8 +121,7 @@ pub fn sphere_mcf(
     let exact = (r0 * r0 - 4.0 * t_end).sqrt();
     let sphere = move |p: anisomesh::geom::DVec3| p.length() - r0;
     for (name, build) in backends {
-        for k in 0..res.levels_3d() {
-            let h = 0.2 / 2f64.powi(k as i32);
+        for h in super::sphere_resolutions(res, name) {
             let start = Instant::now();
             let mut b = build(&BuildSpec {
                 function: &sphere,
@@ -131,7 +131,7 @@ pub fn sphere_mcf(
                 ),
                 resolution: h,
             })?;
-            let steps = (t_end / (h * h)).round().max(1.0) as usize;
+            let steps = (t_end / super::sphere_tau(name, h)).round().max(1.0) as usize;
             for _ in 0..steps {
                 b.advance_mean_curvature(t_end / steps as f64)?;
             }
