@@ -123,7 +123,11 @@ fn star_is_within_eps_and_every_stage_near_its_complexity() {
     );
     assert!(e2d.p99 <= eps && d2e.p99 <= eps, "{e2d:?} {d2e:?}");
     let area = a.report.surface_area.unwrap();
-    assert!(cmp.volume_error.abs() <= 0.5 * eps * area, "{}", cmp.volume_error);
+    assert!(
+        cmp.volume_error.abs() <= 0.5 * eps * area,
+        "{}",
+        cmp.volume_error
+    );
     let stages = &a.report.stages;
     assert!(stages.len() >= 2, "{stages:?}");
     for s in stages {

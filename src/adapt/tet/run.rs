@@ -21,8 +21,8 @@ use crate::metric::{geometric_metric, Sym3};
 
 mod cycle3;
 mod stages;
-pub use stages::{Continuation3, Stage3};
 use stages::{coarsened, Scale};
+pub use stages::{Continuation3, Stage3};
 
 /// What to adapt to.
 pub enum Target3<'a> {

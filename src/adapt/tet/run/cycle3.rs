@@ -61,8 +61,7 @@ pub(super) fn cycles(
         let mut ns = 0;
         for pass in 0..MAX_SPLIT_PASSES {
             let nv = ctx.n_vertices();
-            if 10 * nv >= 13 * renumbered_at.max(1) || (ns == 0 && 10 * nv >= 11 * renumbered_at)
-            {
+            if 10 * nv >= 13 * renumbered_at.max(1) || (ns == 0 && 10 * nv >= 11 * renumbered_at) {
                 ctx.renumber();
                 renumbered_at = ctx.n_vertices();
             }
