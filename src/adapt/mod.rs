@@ -69,7 +69,9 @@ pub use run::{
 };
 pub use shape::{adapt_mesh_to_shape, adapt_to_shape, ShapeAdaptOptions};
 pub use sources::{AnalyticLevelSetSource, HessianMetric, LevelSetMetric, MetricSource, NoSource};
-pub use tet::run::{level_set_metric3, run3, Adapted3, Report3, Run3Options, Target3};
+pub use tet::run::{
+    level_set_metric3, run3, Adapted3, Continuation3, Report3, Run3Options, Stage3, Target3,
+};
 pub use tet::stats::{tet_stats, TetStats};
 pub use tet::{mean_ratio, MetricFn3};
 

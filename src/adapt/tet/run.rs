@@ -19,6 +19,11 @@ use crate::levelset::{enclosed_measure, interface_measure, Normalized, Shape};
 use crate::mesh3::{EditMesh3, Mesh3};
 use crate::metric::{geometric_metric, Sym3};
 
+mod cycle3;
+mod stages;
+use stages::{coarsened, Scale};
+pub use stages::{Continuation3, Stage3};
+
 /// What to adapt to.
 pub enum Target3<'a> {
     /// A metric field, evaluated at every vertex.
@@ -42,6 +47,8 @@ pub struct Run3Options {
     /// The cycle options (length bounds, cycles, final sweeps, per-pass checks, vertex guard;
     /// gradation is not available on tetrahedra).
     pub adapt: AdaptOptions,
+    /// How a shape's metric is reached from the start mesh ([`Continuation3`]).
+    pub continuation: Continuation3,
 }
 
 impl Default for Run3Options {
@@ -61,6 +68,7 @@ impl Default for Run3Options {
                 isotropic: false,
             },
             adapt: AdaptOptions::default().max_vertices(Some(5_000_000)),
+            continuation: Continuation3::default(),
         }
     }
 }
@@ -88,6 +96,9 @@ pub struct Report3 {
     pub seconds: f64,
     /// The cycle's passes.
     pub adapt: AdaptReport,
+    /// The continuation's stages, the target metric last (shape targets; empty for a metric
+    /// target).
+    pub stages: Vec<Stage3>,
 }
 
 /// An adapted mesh with its metric, the level set at its vertices (shape targets) and the
@@ -167,48 +178,11 @@ pub fn level_set_metric3(lm: &LevelSetMetric, u: f64, grad: DVec3, hess: &Sym3) 
     m
 }
 
-/// The scale of the continuation's coarsened metric, shared with the metric function (a
-/// multiple of 1 stored as the bits of an `f64`).
-#[derive(Debug)]
-struct Scale(std::sync::atomic::AtomicU64);
-
-impl Default for Scale {
-    fn default() -> Self {
-        Scale(std::sync::atomic::AtomicU64::new(1f64.to_bits()))
-    }
-}
-
-impl Scale {
-    fn get(&self) -> f64 {
-        f64::from_bits(self.0.load(std::sync::atomic::Ordering::Relaxed))
-    }
-    fn set(&self, s: f64) {
-        self.0
-            .store(s.to_bits(), std::sync::atomic::Ordering::Relaxed)
-    }
-}
-
-/// `lm` with `hmin` and the band multiplied by `s` (`hmin` at most `hmax`): the same interface
-/// seen `s` times coarser across, the start of one continuation stage.
-fn coarsened(lm: &LevelSetMetric, s: f64) -> LevelSetMetric {
-    if s == 1.0 {
-        return *lm;
-    }
-    LevelSetMetric {
-        hmin: (lm.hmin * s).min(lm.hmax),
-        band: lm.band * s,
-        ..*lm
-    }
-}
-
-/// The number of continuation stages before the target metric: `hmin` doubled until it
-/// reaches `hmax / 2`, at most four times.
-fn continuation_stages(lm: &LevelSetMetric) -> u32 {
-    let mut k = 0;
-    while k < 4 && lm.hmin * f64::from(1u32 << (k + 1)) <= 0.5 * lm.hmax {
-        k += 1;
-    }
-    k
+/// The live vertices of `mesh`.
+fn alive_points(mesh: &EditMesh3) -> usize {
+    (0..mesh.points.len() as u32)
+        .filter(|&v| mesh.alive(v))
+        .count()
 }
 
 /// Re-evaluates the metric at every vertex of `ctx` from `source` (after the continuation's
@@ -272,6 +246,7 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
         ));
     }
     let lm = opts.metric;
+    let cont = opts.continuation;
     let seen;
     let coarsening = Scale::default();
     let shape_metric;
@@ -284,7 +259,7 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
             let scale = &coarsening;
             shape_metric = move |p: DVec3| {
                 let (u, g, h) = seen.jet(p);
-                level_set_metric3(&coarsened(&lm, scale.get()), u, g, &h)
+                level_set_metric3(&coarsened(&lm, cont, scale.get()), u, g, &h)
             };
             (&shape_metric, Some(seen.shape()))
         }
@@ -302,18 +277,40 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     ctx.l_min = opts.adapt.l_min;
     ctx.l_max = opts.adapt.l_max;
     let mut rep = AdaptReport::default();
+    let mut stage_reports = Vec::new();
     if shape.is_some() {
-        // Continuation: the eq. (6) metric with hmin and the band scaled by 2^k, k = K, …, 1,
-        // before the metric itself (module documentation).
-        for k in (1..=continuation_stages(&lm)).rev() {
-            coarsening.set((1u64 << k) as f64);
-            refresh_metric(&mut ctx, source)?;
-            run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
+        // Continuation: the eq. (6) metric seen 2^k times coarser, k = K, …, 1, before the
+        // metric itself (`stages`).
+        for k in (0..=stages::stage_count(&lm, cont)).rev() {
+            let s = (1u64 << k) as f64;
+            coarsening.set(s);
+            if k > 0 || !stage_reports.is_empty() {
+                refresh_metric(&mut ctx, source)?;
+            }
+            let start = alive_points(&ctx.mesh);
+            let mut r = AdaptReport::default();
+            // A stage's mesh only has to be close to the next stage's metric (`cycle3`).
+            let churn = if k == 0 { 200 } else { 50 };
+            cycle3::cycles(&mut ctx, &opts.adapt, churn, opts.adapt.max_cycles, &mut r)?;
+            let c = coarsened(&lm, cont, s);
+            stage_reports.push(Stage3 {
+                scale: s,
+                eps: c.eps,
+                hmin: c.hmin,
+                band: c.band,
+                start_vertices: start,
+                vertices: alive_points(&ctx.mesh),
+                peak_vertices: stages::peak(start, &r),
+                complexity: stages::complexity(&ctx.mesh, &ctx.metric),
+                passes: r.passes.len(),
+                seconds: stages::seconds_by_kind(&r),
+            });
+            rep.absorb(&r);
+            rep.converged = r.converged;
         }
-        coarsening.set(1.0);
-        refresh_metric(&mut ctx, source)?;
+    } else {
+        run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
     }
-    run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
     final_sweep(&mut ctx, &opts.adapt, &mut rep)?;
     super::conform::polish(&mut ctx, &opts.adapt, &mut rep)?;
     let (mesh, old) = ctx.mesh.to_mesh();
@@ -340,6 +337,7 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
         surface_area: area,
         seconds: clock.elapsed().as_secs_f64(),
         adapt: rep,
+        stages: stage_reports,
     };
     Ok(Adapted3 {
         mesh,

@@ -73,6 +73,10 @@ pub struct AdaptArgs {
     /// or an --expr in x, y, z).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
     dim: u8,
+    /// --dim 3 with a shape: reach the metric through stages with every size doubled
+    /// ("sizes", default), with only hmin and the band doubled ("normal"), or directly ("off").
+    #[arg(long, value_parser = ["sizes", "normal", "off"])]
+    continuation: Option<String>,
 }
 
 pub(crate) fn parse_domain(s: &str) -> Result<(DVec2, DVec2)> {
@@ -176,6 +180,7 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         return super::adapt3::run(
             a.shape.as_deref(),
             a.expr.as_deref(),
+            a.continuation.as_deref(),
             metric3,
             a.hgrad,
             a.max_vertices,

@@ -6,8 +6,8 @@
 //! at `y = 0` by mean ratio).
 
 use anisomesh::adapt::{
-    run3, run3_graded, run3_to_field, tet_stats, Adapted3, DiscreteLevelSet3, LevelSetMetric,
-    Run3Options, Target3,
+    run3, run3_graded, run3_to_field, tet_stats, Adapted3, Continuation3, DiscreteLevelSet3,
+    LevelSetMetric, Run3Options, Target3,
 };
 use anisomesh::geom::DVec3;
 use anisomesh::io::{self, atomic_write, Medit3};
@@ -66,13 +66,24 @@ pub(crate) fn shape3(
 pub fn run(
     name: Option<&str>,
     expr: Option<&str>,
+    continuation: Option<&str>,
     metric: impl Fn(LevelSetMetric) -> LevelSetMetric,
     hgrad: Option<f64>,
     max_vertices: f64,
     out_dir: &Path,
 ) -> Result<()> {
     let (name, shape) = shape3(name, expr)?;
-    let opts = options(metric, max_vertices);
+    let mut opts = options(metric, max_vertices);
+    opts.continuation = match continuation {
+        None | Some("sizes") => Continuation3::Sizes,
+        Some("normal") => Continuation3::Normal,
+        Some("off") => Continuation3::Off,
+        Some(c) => {
+            return Err(Error::InvalidInput(format!(
+                "--continuation '{c}': expected sizes, normal or off"
+            )))
+        }
+    };
     let a = match hgrad {
         Some(beta) => run3_graded(shape.as_ref(), None, &opts, beta)?,
         None => run3(Target3::Shape(shape.as_ref()), None, &opts)?,
@@ -232,6 +243,27 @@ fn print_and_write(a: &Adapted3, name: &str, source: Option<&str>, out_dir: &Pat
             ", not converged"
         }
     );
+    for s in &r.stages {
+        println!(
+            "stage x{:<3} eps {:.2e} hmin {:.2e} band {:.2e}: vertices {} -> {} (peak {}), \
+             complexity {:.0} ({:.2} vertices per unit), {} passes, s split/collapse/swap/smooth \
+             {:.1}/{:.1}/{:.1}/{:.1}",
+            s.scale,
+            s.eps,
+            s.hmin,
+            s.band,
+            s.start_vertices,
+            s.vertices,
+            s.peak_vertices,
+            s.complexity,
+            s.vertices as f64 / s.complexity.max(1e-300),
+            s.passes,
+            s.seconds[0],
+            s.seconds[1],
+            s.seconds[2],
+            s.seconds[3]
+        );
+    }
     let json = serde_json::to_string_pretty(r).map_err(|e| Error::InvalidInput(e.to_string()))?;
     let report_path = out_dir.join("report.json");
     atomic_write(&report_path, |w| w.write_all(json.as_bytes()))?;
