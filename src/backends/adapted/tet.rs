@@ -28,7 +28,8 @@
 use super::mcf::StepCost;
 use super::mcf3::semi_implicit_step;
 use crate::adapt::{
-    run3, AdaptOptions, Adapted3, DiscreteLevelSet3, LevelSetMetric, Run3Options, Target3,
+    run3, AdaptOptions, Adapted3, Continuation3, DiscreteLevelSet3, LevelSetMetric, Run3Options,
+    Target3,
 };
 use crate::backends::{
     advection_substeps, check_dt, BuildSpec, CurvatureSamples, LevelSetBackend, StepReport,
@@ -162,6 +163,9 @@ impl AdaptedBackend3 {
             cells: opts.cells,
             metric,
             adapt: AdaptOptions::default().max_vertices(Some(opts.max_vertices)),
+            // Stages with hmin and the band doubled at the target's ε: the sphere's tangential
+            // sizes are the target's from the first stage.
+            continuation: Continuation3::Normal,
         };
         let a = run3(Target3::Shape(&Implicit(spec.function)), None, &run)?;
         let u = a.level_set.unwrap_or_default();
