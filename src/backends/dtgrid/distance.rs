@@ -361,18 +361,26 @@ pub fn extend_distance<B: Band<Coord = C3>>(
     let mut best = vec![NONE; coords.len()];
     let mut dist = vec![f64::INFINITY; coords.len()];
     let mut seed = vec![false; coords.len()];
+    // One forward cursor per corner: the corners `c + offset` of the sorted crossed cells are
+    // sorted too, so they are found by merging, not by search.
+    let mut cur = [0usize; 8];
     let mut tri = 0usize;
     for (id, (c, _)) in l.cells.iter().enumerate() {
         let start = tri;
         while tri < l.tri_cell.len() && l.tri_cell[tri] == id as u32 {
             tri += 1;
         }
-        for corner in 0..8 {
-            let Some(i) = to.index(GridCoord::corner(*c, corner)) else {
+        for (corner, cur) in cur.iter_mut().enumerate() {
+            let q = GridCoord::corner(*c, corner);
+            while *cur < coords.len() && coords[*cur] < q {
+                *cur += 1;
+            }
+            if *cur == coords.len() || coords[*cur] != q {
                 continue;
-            };
+            }
+            let i = *cur;
             seed[i] = true;
-            let p = lat.pos(coords[i]);
+            let p = lat.pos(q);
             for (t, tr) in tris.iter().enumerate().take(tri).skip(start) {
                 if tr.beyond(p, dist[i]) {
                     continue;
@@ -386,21 +394,23 @@ pub fn extend_distance<B: Band<Coord = C3>>(
         }
     }
     // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes). Only
-    // nodes with a neighbour that changed in the last pass are visited again, and a candidate
+    // nodes with a neighbour that changed in the last pass are visited again (a list built from
+    // the changes, not a test of 27 flags per node), and a candidate
     // triangle is measured only when its lower bound can beat the best so far (the node's own
     // triangle, whose distance is known, bounds the search from the start).
     let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
     let layers = (max_dist / lat.h).ceil() as usize + 1;
     let tie = 1e-12 * lat.h;
-    let mut moved = vec![true; coords.len()];
-    for pass in 0..layers {
-        let res: Vec<Option<(f64, u32)>> = (0..coords.len())
-            .into_par_iter()
-            .map(|i| {
+    // The nodes to visit in the next pass: every node first, then the nodes with a neighbour
+    // (or themselves) changed in the last pass, collected while the changes are applied.
+    let mut visit: Vec<u32> = (0..coords.len() as u32).collect();
+    let mut mark = vec![false; coords.len()];
+    for _ in 0..layers {
+        let res: Vec<Option<(f64, u32)>> = visit
+            .par_iter()
+            .map(|&i| {
+                let i = i as usize;
                 let nb = &nbr[i];
-                if !moved[i] && nb.iter().all(|&j| j == NONE || !moved[j as usize]) {
-                    return None;
-                }
                 let p = lat.pos(coords[i]);
                 let own = best[i];
                 let (mut bd, mut bt) = (dist[i], own);
@@ -440,16 +450,27 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             })
             .collect();
         let mut changed = false;
-        for (i, r) in res.into_iter().enumerate() {
-            moved[i] = false;
+        for (&i, r) in visit.iter().zip(res) {
             let Some((d, t)) = r else { continue };
+            let i = i as usize;
             changed = true;
-            moved[i] = true;
             best[i] = t;
             dist[i] = d;
+            mark[i] = true;
+            for &j in &nbr[i] {
+                if j != NONE {
+                    mark[j as usize] = true;
+                }
+            }
         }
-        if !changed && pass > 0 {
+        if !changed {
             break;
+        }
+        visit.clear();
+        for (i, m) in mark.iter_mut().enumerate() {
+            if std::mem::take(m) {
+                visit.push(i as u32);
+            }
         }
     }
     // The distance to the trilinear zero level from the nearest triangle, and the side of it.

@@ -142,14 +142,12 @@ fn boundary_change<B: Band<Coord = C3>>(
     old: &[f64],
 ) -> f64 {
     let (mut sum, mut count) = (0.0, 0usize);
-    for ((c, v), _) in new_nb
-        .band
-        .coords()
+    for ((k, v), _) in old_index(&old_nb.band, &new_nb.band)
         .zip(new)
         .zip(&new_nb.interior)
         .filter(|(_, &int)| !int)
     {
-        if let Some(k) = old_nb.band.index(c) {
+        if let Some(k) = k {
             sum += (v - old[k]).abs();
             count += 1;
         }
@@ -159,6 +157,19 @@ fn boundary_change<B: Band<Coord = C3>>(
     } else {
         sum / count as f64
     }
+}
+
+/// Per node of `to`, in storage order: its index in `from`, if `from` has it (one merge of the
+/// two sorted node lists, no search).
+fn old_index<'a, B: Band<Coord = C3>>(
+    from: &'a B,
+    to: &'a B,
+) -> impl Iterator<Item = Option<usize>> + 'a {
+    let mut old = from.coords().enumerate().peekable();
+    to.coords().map(move |c| {
+        while old.next_if(|(_, o)| *o < c).is_some() {}
+        old.next_if(|(_, o)| *o == c).map(|(k, _)| k)
+    })
 }
 
 /// `Φ^k` (a signed distance on `from`) on the band `to`, where `d` is the signed distance to the
@@ -175,8 +186,8 @@ fn extend_phi<B: Band<Coord = C3>>(
     shells: i32,
 ) -> Vec<f64> {
     let mut out = Vec::with_capacity(to.len());
-    for (i, c) in to.coords().enumerate() {
-        if let Some(k) = from.index(c) {
+    for (i, (c, k)) in to.coords().zip(old_index(from, to)).enumerate() {
+        if let Some(k) = k {
             out.push(phi[k]);
             continue;
         }
@@ -315,10 +326,8 @@ impl<B: Band<Coord = C3> + Clone> McfState<B> {
             let same =
                 new_nb.band.len() == nb.band.len() && new_nb.band.coords().eq(nb.band.coords());
             let done = same || {
-                let gained = new_nb
-                    .band
-                    .coords()
-                    .filter(|c| nb.band.index(*c).is_none())
+                let gained = old_index(&nb.band, &new_nb.band)
+                    .filter(Option::is_none)
                     .count();
                 let lost = nb.band.len() + gained - new_nb.band.len();
                 ((gained + lost) as f64) < o.delta * nb.band.len() as f64

@@ -44,39 +44,64 @@ fn corner_mask(a: usize) -> u32 {
     CODE[a].iter().fold(0, |m, &c| m | 1 << c)
 }
 
+/// The pairs `a ≤ b` of the upper triangle of an element matrix, row by row.
+const UPPER: [(usize, usize); 36] = upper();
+
+const fn upper() -> [(usize, usize); 36] {
+    let mut t = [(0, 0); 36];
+    let (mut a, mut k) = (0, 0);
+    while a < 8 {
+        let mut b = a;
+        while b < 8 {
+            t[k] = (a, b);
+            k += 1;
+            b += 1;
+        }
+        a += 1;
+    }
+    t
+}
+
 /// The isotropic element stiffness at the 2 × 2 × 2 Gauss points, `K = Σ_q a_q G_q` with the
 /// products `G_q[a][b] = w_q h ∇ψ_a(ξ_q) · ∇ψ_b(ξ_q)` tabulated once (000 (2.7)).
 struct Kernel {
-    /// Per Gauss point: the 64 products.
-    g: Vec<[f64; 64]>,
+    /// Per upper-triangle pair `(a, b)` (see [`UPPER`]): the products at the 8 Gauss points
+    /// (contiguous, so the weighted sum is one short dot product).
+    g: [[f64; 8]; 36],
     /// Per Gauss point: the reference gradients of the 8 shape functions, over `h`.
-    grad: Vec<[[f64; 3]; 8]>,
+    grad: [[[f64; 3]; 8]; 8],
 }
 
 impl Kernel {
-    fn new(q1: &Q1, h: f64) -> Kernel {
-        let nq = q1.weights.len();
-        let mut g = vec![[0.0; 64]; nq];
-        let mut grad = vec![[[0.0; 3]; 8]; nq];
-        for q in 0..nq {
+    /// Error: [`Error::InvalidInput`] unless `q1` has the 8 Gauss points of the cube.
+    fn new(q1: &Q1, h: f64) -> Result<Kernel> {
+        if q1.weights.len() != 8 || q1.grads.len() != 64 {
+            return Err(Error::InvalidInput(format!(
+                "band stiffness kernel: {} quadrature points (8 expected)",
+                q1.weights.len()
+            )));
+        }
+        let mut g = [[0.0; 8]; 36];
+        let mut grad = [[[0.0; 3]; 8]; 8];
+        for (q, gq) in grad.iter_mut().enumerate() {
             let gr = &q1.grads[q * 8..(q + 1) * 8];
             for a in 0..8 {
                 for k in 0..3 {
-                    grad[q][a][k] = gr[a][k] / h;
-                }
-                for b in 0..8 {
-                    let dot = gr[a][0] * gr[b][0] + gr[a][1] * gr[b][1] + gr[a][2] * gr[b][2];
-                    g[q][a * 8 + b] = q1.weights[q] * h * dot;
+                    gq[a][k] = gr[a][k] / h;
                 }
             }
+            for (gk, &(a, b)) in g.iter_mut().zip(&UPPER) {
+                let dot = gr[a][0] * gr[b][0] + gr[a][1] * gr[b][1] + gr[a][2] * gr[b][2];
+                gk[q] = q1.weights[q] * h * dot;
+            }
         }
-        Kernel { g, grad }
+        Ok(Kernel { g, grad })
     }
 
     /// The stiffness weighted by `|∇Φ|_ε⁻¹` at the Gauss points for the corner values `v`
     /// (the upper triangle summed, the lower one mirrored: `G_q` is symmetric).
+    #[inline]
     fn mcf(&self, eps: f64, v: &[f64; 8], ke: &mut [f64; 64]) {
-        debug_assert_eq!(self.g.len(), 8);
         let mut w = [0.0; 8];
         for (wq, grq) in w.iter_mut().zip(&self.grad) {
             let mut d = [0.0; 3];
@@ -87,15 +112,14 @@ impl Kernel {
             }
             *wq = 1.0 / (eps * eps + d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         }
-        for a in 0..8 {
-            for b in a..8 {
-                let mut k = 0.0;
-                for (wq, gq) in w.iter().zip(&self.g) {
-                    k += wq * gq[a * 8 + b];
-                }
-                ke[a * 8 + b] = k;
-                ke[b * 8 + a] = k;
+        for (gk, &(a, b)) in self.g.iter().zip(&UPPER) {
+            let mut s = [0.0; 4];
+            for q in 0..4 {
+                s[q] = w[q] * gk[q] + w[q + 4] * gk[q + 4];
             }
+            let k = (s[0] + s[2]) + (s[1] + s[3]);
+            ke[a * 8 + b] = k;
+            ke[b * 8 + a] = k;
         }
     }
 }
@@ -151,7 +175,7 @@ pub fn assemble_scaled(
     }
     let q1 = Q1::new(3, 2)?;
     let h = lat.h;
-    let kernel = Kernel::new(&q1, h);
+    let kernel = Kernel::new(&q1, h)?;
     let parts = 4 * rayon::current_num_threads();
     let rows = ranges(n, parts);
     let cmask: [u32; 8] = std::array::from_fn(corner_mask);
