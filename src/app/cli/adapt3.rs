@@ -3,7 +3,7 @@
 //! optionally graded (`--hgrad`); and `adapt --input M.mesh --sol S.sol` on a tetrahedral mesh
 //! with a metric, sizes or a level set at its vertices. Both write the mesh (`.mesh`), a `.vtu`
 //! with the level set and the quality, `report.json` and a PNG (the zero level shaded, the cut
-//! at `y = 0` by mean ratio).
+//! through the middle of the mesh in y by mean ratio).
 
 use anisomesh::adapt::{
     run3, run3_graded, run3_to_field, tet_stats, Adapted3, Continuation3, DiscreteLevelSet3,
@@ -277,7 +277,7 @@ fn print_and_write(a: &Adapted3, name: &str, source: Option<&str>, out_dir: &Pat
 }
 
 /// The zero level of the P1 level set `u` shaded, beside the cut through the tetrahedra at
-/// `y = 0` coloured by their mean ratio.
+/// the middle `y` of the mesh coloured by their mean ratio.
 fn picture(
     path: &std::path::Path,
     m: &anisomesh::mesh3::Mesh3,
@@ -294,14 +294,22 @@ fn picture(
         }
         surface.weld(1e-12);
     }
+    // The cut through the middle of the bounding box (y = 0 for the default box).
+    let (lo, hi) = m
+        .points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+    let y = if lo <= hi { 0.5 * (lo + hi) } else { 0.0 };
     let cut = render_tet_cut_rgb(
         m,
         &CutPlane {
-            point: DVec3::ZERO,
+            point: DVec3::new(0.0, y, 0.0),
             normal: DVec3::Y,
         },
         q,
-        "cut y = 0, mean ratio",
+        &format!("cut y = {y}, mean ratio"),
         &View::facing(DVec3::NEG_Y),
     )?;
     let image = if surface.triangles.is_empty() {
