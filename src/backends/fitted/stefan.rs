@@ -349,13 +349,7 @@ fn averaged_extension(
     smoothing: f64,
 ) -> Vec<f64> {
     let m = &fm.mesh;
-    // Dual length of each interface vertex: half the lengths of its interface edges.
-    let mut weight = vec![0.0f64; m.n_points()];
-    for [a, b] in fm.interface_edges() {
-        let l = 0.5 * (m.points[a as usize] - m.points[b as usize]).length();
-        weight[a as usize] += l;
-        weight[b as usize] += l;
-    }
+    let weight = interface_dual_lengths(fm);
     let mut out = vec![0.0; fm.n_base_vertices];
     for (v, o) in out.iter_mut().enumerate() {
         if fm.u[v].abs() > band {
