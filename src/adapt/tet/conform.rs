@@ -313,7 +313,7 @@ mod tests {
     }
 
     /// Near `l_min` the loop measures an edge in the field: along an edge of linearly varying
-    /// size the exact length `∫ dz / h` is reproduced to 1e-5, where the end-metric length is
+    /// size the exact length `∫ dz / h` is reproduced to 5e-5, where the end-metric length is
     /// off by more than 3 %; far from `[l_min, l_max]`'s ends the end-metric length is kept.
     #[test]
     fn near_the_bounds_lengths_are_integrated_in_the_field() {
@@ -336,7 +336,7 @@ mod tests {
         let exact = linear_size_length(lz / 0.02, lz / (0.02 + lz));
         assert!((exact - 0.75).abs() < 1e-12);
         let (ends, field) = (ctx.length(a, b), loop_length(&ctx, a, b));
-        assert!((field - exact).abs() < 1e-5 * exact, "{field} vs {exact}");
+        assert!((field - exact).abs() < 5e-5 * exact, "{field} vs {exact}");
         assert!(ends > 1.03 * exact, "{ends} vs {exact}");
         // An edge of length 3 along x: far from both ends of the range.
         let c = at(DVec3::new(3.0, 0.0, 0.0));
