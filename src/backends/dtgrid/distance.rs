@@ -12,20 +12,12 @@
 //! shifts the zero level by that much at every redistancing).
 
 use super::band::{Band, GridCoord};
-use super::lattice::{crosses, Lattice, C3};
+use super::lattice::{Lattice, C3};
 use super::surface::closest_on_triangle;
+pub use super::zero_level::zero_level_integral;
+pub(crate) use super::zero_level::{level, Level};
 use crate::geom::DVec3;
 use rayon::prelude::*;
-
-/// The Kuhn tetrahedra of a cube: corners `0, 2^a, 2^a + 2^b, 7` for each axis order `(a, b)`.
-const KUHN: [[usize; 4]; 6] = [
-    [0, 1, 3, 7],
-    [0, 1, 5, 7],
-    [0, 2, 3, 7],
-    [0, 2, 6, 7],
-    [0, 4, 5, 7],
-    [0, 4, 6, 7],
-];
 
 const NONE: u32 = u32::MAX;
 
@@ -39,181 +31,6 @@ pub enum Keep {
     Crossing,
     /// Every node of the old band (the extension of `Φ^k` in 000 §2.4).
     OldBand,
-}
-
-/// The triangles of the zero level with the corner values of their cells.
-struct Level {
-    /// The triangles' corners, oriented with the negative side behind them.
-    tris: Vec<[DVec3; 3]>,
-    /// Per triangle: its cell.
-    tri_cell: Vec<u32>,
-    /// Per crossed cell: lowest corner, corner values.
-    cells: Vec<(C3, [f64; 8])>,
-}
-
-/// Appends the zero level of the linear interpolant of `values` on the tetrahedron `points` to
-/// `out`, oriented with the negative side behind (the triangles of
-/// [`TriangleSurface::add_tet_zero_level`], without allocating).
-///
-/// [`TriangleSurface::add_tet_zero_level`]: crate::levelset::TriangleSurface::add_tet_zero_level
-fn tet_zero_level(points: [DVec3; 4], values: [f64; 4], out: &mut Vec<[DVec3; 3]>) {
-    let (mut inside, mut outside) = ([0usize; 4], [0usize; 4]);
-    let (mut ni, mut no) = (0, 0);
-    for (i, v) in values.iter().enumerate() {
-        if *v < 0.0 {
-            inside[ni] = i;
-            ni += 1;
-        } else {
-            outside[no] = i;
-            no += 1;
-        }
-    }
-    let cut = |a: usize, b: usize| {
-        let (ua, ub) = (values[a], values[b]);
-        let s = ua / (ua - ub);
-        points[a] + s * (points[b] - points[a])
-    };
-    let mut poly = [DVec3::ZERO; 4];
-    let np = match (ni, no) {
-        (1, 3) => {
-            for (q, &o) in poly.iter_mut().zip(&outside[..3]) {
-                *q = cut(inside[0], o);
-            }
-            3
-        }
-        (3, 1) => {
-            for (q, &i) in poly.iter_mut().zip(&inside[..3]) {
-                *q = cut(i, outside[0]);
-            }
-            3
-        }
-        (2, 2) => {
-            poly = [
-                cut(inside[0], outside[0]),
-                cut(inside[0], outside[1]),
-                cut(inside[1], outside[1]),
-                cut(inside[1], outside[0]),
-            ];
-            4
-        }
-        _ => return,
-    };
-    let centre =
-        |idx: &[usize]| idx.iter().fold(DVec3::ZERO, |s, &i| s + points[i]) / idx.len() as f64;
-    let (centre_in, centre_out) = (centre(&inside[..ni]), centre(&outside[..no]));
-    let n = (poly[1] - poly[0]).cross(poly[2] - poly[0])
-        + if np == 4 {
-            (poly[2] - poly[0]).cross(poly[3] - poly[0])
-        } else {
-            DVec3::ZERO
-        };
-    let flip = n.dot(centre_out - centre_in) < 0.0;
-    let mut push = |a: usize, b: usize, c: usize| {
-        out.push(if flip {
-            [poly[a], poly[c], poly[b]]
-        } else {
-            [poly[a], poly[b], poly[c]]
-        });
-    };
-    push(0, 1, 2);
-    if np == 4 {
-        push(0, 2, 3);
-    }
-}
-
-fn level<B: Band<Coord = C3>>(lat: &Lattice, band: &B, phi: &[f64]) -> Level {
-    let mut l = Level {
-        tris: Vec::new(),
-        tri_cell: Vec::new(),
-        cells: Vec::new(),
-    };
-    for (c, idx) in band.cells() {
-        let v: [f64; 8] = std::array::from_fn(|k| phi[idx[k] as usize]);
-        if !crosses(&v) {
-            continue;
-        }
-        let p0 = lat.pos(c);
-        let before = l.tris.len();
-        for t in KUHN {
-            let pts = t.map(|k| p0 + lat.h * corner_offset(k));
-            tet_zero_level(pts, t.map(|k| v[k]), &mut l.tris);
-        }
-        let id = l.cells.len() as u32;
-        l.tri_cell
-            .extend(std::iter::repeat(id).take(l.tris.len() - before));
-        l.cells.push((c, v));
-    }
-    l
-}
-
-impl Level {
-    /// `q` moved by two Newton steps onto the trilinear zero level of the cell of triangle `t`.
-    fn project(&self, lat: &Lattice, t: u32, mut q: DVec3) -> DVec3 {
-        let (c0, v) = &self.cells[self.tri_cell[t as usize] as usize];
-        let p0 = lat.pos(*c0);
-        for _ in 0..2 {
-            let (f, g) = trilinear(v, p0, lat.h, q);
-            let g2 = g.length_squared();
-            if g2 <= 1e-300 {
-                break;
-            }
-            let step = g * (f / g2);
-            if step.length() > 0.5 * lat.h {
-                break;
-            }
-            q -= step;
-        }
-        q
-    }
-}
-
-/// The area of the zero level of the band field `phi` and the integral of `g` over it: the
-/// marching-tetrahedra triangles with a three-point rule whose points are projected onto the
-/// trilinear zero level of their cells (the chords of a curved zero level lie `O(h²κ)` off it,
-/// which would bias a radius measured on them).
-pub fn zero_level_integral<B: Band<Coord = C3>>(
-    lat: &Lattice,
-    band: &B,
-    phi: &[f64],
-    g: impl Fn(DVec3) -> f64,
-) -> (f64, f64) {
-    let l = level(lat, band, phi);
-    let (mut area, mut total) = (0.0, 0.0);
-    for (t, &[a, b, c]) in l.tris.iter().enumerate() {
-        let ar = 0.5 * (b - a).cross(c - a).length();
-        area += ar;
-        for (wa, wb, wc) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
-            let x = l.project(lat, t as u32, (wa * a + wb * b + wc * c) / 6.0);
-            total += ar / 3.0 * g(x);
-        }
-    }
-    (area, total)
-}
-
-fn corner_offset(k: usize) -> DVec3 {
-    DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, (k >> 2) as f64)
-}
-
-/// The trilinear interpolant of the corner values `v` of the cell at `p0` and its gradient at `q`.
-fn trilinear(v: &[f64; 8], p0: DVec3, h: f64, q: DVec3) -> (f64, DVec3) {
-    let xi = (q - p0) / h;
-    let (x, y, z) = (xi.x, xi.y, xi.z);
-    let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
-    // Along x on the four x-edges, then y, then z.
-    let e = [(0, 1), (2, 3), (4, 5), (6, 7)].map(|(a, b)| (lerp(v[a], v[b], x), v[b] - v[a]));
-    let f0 = (
-        lerp(e[0].0, e[1].0, y),
-        lerp(e[0].1, e[1].1, y),
-        e[1].0 - e[0].0,
-    );
-    let f1 = (
-        lerp(e[2].0, e[3].0, y),
-        lerp(e[2].1, e[3].1, y),
-        e[3].0 - e[2].0,
-    );
-    let val = lerp(f0.0, f1.0, z);
-    let g = DVec3::new(lerp(f0.1, f1.1, z), lerp(f0.2, f1.2, z), f1.0 - f0.0) / h;
-    (val, g)
 }
 
 /// A triangle of the zero level with cheap lower bounds of the distance to it: its
@@ -330,6 +147,110 @@ fn neighbourhoods<T: Send>(coords: &[C3], f: impl Fn(usize, &[u32; 27]) -> T + S
     parts.into_iter().flatten().collect()
 }
 
+/// The nearest to `p` of the current best `(bd, bt)` and the triangles `cands` (repeats and
+/// `NONE` skipped): ties within `tie` go to the triangle facing `p` most, then the lowest index.
+fn nearest(
+    tris: &[Tri],
+    p: DVec3,
+    (mut bd, mut bt): (f64, u32),
+    tie: f64,
+    cands: impl Iterator<Item = u32>,
+) -> (f64, u32) {
+    // `|cos|` of the best triangle, computed when a tie needs it.
+    let mut bcos = f64::NAN;
+    let mut seen = [NONE; 27];
+    let mut ns = 0;
+    for t in cands {
+        if t == NONE || t == bt || seen[..ns].contains(&t) {
+            continue;
+        }
+        if ns < seen.len() {
+            seen[ns] = t;
+            ns += 1;
+        }
+        let tr = &tris[t as usize];
+        if tr.beyond(p, bd + tie) {
+            continue;
+        }
+        let d = tr.distance(p);
+        if d < bd - tie {
+            (bd, bt, bcos) = (d, t, f64::NAN);
+        } else if (d - bd).abs() <= tie {
+            if bcos.is_nan() {
+                bcos = tris[bt as usize].cos(p);
+            }
+            let cos = tr.cos(p);
+            if cos > bcos || (cos == bcos && t < bt) {
+                (bd, bt, bcos) = (d, t, cos);
+            }
+        }
+    }
+    (bd, bt)
+}
+
+/// Up to `layers` Jacobi passes in which every node (position `pos`) takes the nearest of its
+/// own triangle and its neighbours' (`nbr`), starting from the seeds' `best` and `dist`.
+///
+/// Only nodes with a neighbour that changed in the last pass are visited again (a list built
+/// from the changes, not a test of 27 flags per node), and only the triangles of those
+/// neighbours are candidates: a neighbour's triangle from an earlier pass was measured when that
+/// neighbour changed (or in the first pass) and lost, and the best distance only falls, so it
+/// cannot win now. The states after every pass are those of full passes. A candidate is
+/// measured only when its lower bound can beat the best so far (the node's own triangle, whose
+/// distance is known, bounds the search from the start).
+fn propagate(
+    tris: &[Tri],
+    nbr: &[[u32; 27]],
+    pos: &(impl Fn(usize) -> DVec3 + Sync),
+    layers: usize,
+    tie: f64,
+    best: &mut [u32],
+    dist: &mut [f64],
+) {
+    let mut visit: Vec<u32> = (0..nbr.len() as u32).collect();
+    let mut mark = vec![false; nbr.len()];
+    // The pass in which a node's triangle last changed (0: a seed's, or none).
+    let mut stamp = vec![0u32; nbr.len()];
+    for pass in 1..=layers as u32 {
+        let (b, s, dd) = (&*best, &stamp, &*dist);
+        let res: Vec<Option<(f64, u32)>> = visit
+            .par_iter()
+            .map(|&i| {
+                let i = i as usize;
+                let fresh = nbr[i]
+                    .iter()
+                    .filter(|&&j| j != NONE && (pass == 1 || s[j as usize] == pass - 1))
+                    .map(|&j| b[j as usize]);
+                let (d, t) = nearest(tris, pos(i), (dd[i], b[i]), tie, fresh);
+                (t != b[i]).then_some((d, t))
+            })
+            .collect();
+        let mut changed = false;
+        for (&i, r) in visit.iter().zip(res) {
+            let Some((d, t)) = r else { continue };
+            let i = i as usize;
+            changed = true;
+            best[i] = t;
+            dist[i] = d;
+            stamp[i] = pass;
+            for &j in &nbr[i] {
+                if j != NONE {
+                    mark[j as usize] = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+        visit.clear();
+        for (i, m) in mark.iter_mut().enumerate() {
+            if std::mem::take(m) {
+                visit.push(i as u32);
+            }
+        }
+    }
+}
+
 /// The values on `to` of the band field `phi` on `from`: the signed distance to the zero level of
 /// `phi` (the trilinear zero level in the cells it crosses), except where `keep` keeps `phi`.
 /// Signs come from `phi` where the node is in `from`, else from the side of the nearest
@@ -342,7 +263,19 @@ pub fn extend_distance<B: Band<Coord = C3>>(
     keep: Keep,
     max_dist: f64,
 ) -> Vec<f64> {
-    let l = level(lat, from, phi);
+    extend_from_level(lat, &level(lat, from, phi), from, phi, to, keep, max_dist)
+}
+
+/// [`extend_distance`] with the zero level `l` of `phi` on `from` already cut.
+pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    l: &Level,
+    from: &B,
+    phi: &[f64],
+    to: &B,
+    keep: Keep,
+    max_dist: f64,
+) -> Vec<f64> {
     let coords: Vec<C3> = to.coords().collect();
     let old_coords: Vec<C3> = from.coords().collect();
     // The old value of every new node, by one merge of the two sorted lists.
@@ -393,86 +326,18 @@ pub fn extend_distance<B: Band<Coord = C3>>(
             }
         }
     }
-    // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes). Only
-    // nodes with a neighbour that changed in the last pass are visited again (a list built from
-    // the changes, not a test of 27 flags per node), and a candidate
-    // triangle is measured only when its lower bound can beat the best so far (the node's own
-    // triangle, whose distance is known, bounds the search from the start).
+    // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes).
     let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
     let layers = (max_dist / lat.h).ceil() as usize + 1;
-    let tie = 1e-12 * lat.h;
-    // The nodes to visit in the next pass: every node first, then the nodes with a neighbour
-    // (or themselves) changed in the last pass, collected while the changes are applied.
-    let mut visit: Vec<u32> = (0..coords.len() as u32).collect();
-    let mut mark = vec![false; coords.len()];
-    for _ in 0..layers {
-        let res: Vec<Option<(f64, u32)>> = visit
-            .par_iter()
-            .map(|&i| {
-                let i = i as usize;
-                let nb = &nbr[i];
-                let p = lat.pos(coords[i]);
-                let own = best[i];
-                let (mut bd, mut bt) = (dist[i], own);
-                // `|cos|` of the best triangle, computed when a tie needs it.
-                let mut bcos = f64::NAN;
-                let mut seen = [NONE; 27];
-                let mut ns = 0;
-                for &j in nb.iter() {
-                    if j == NONE {
-                        continue;
-                    }
-                    let t = best[j as usize];
-                    if t == NONE || t == bt || seen[..ns].contains(&t) {
-                        continue;
-                    }
-                    seen[ns] = t;
-                    ns += 1;
-                    let tr = &tris[t as usize];
-                    if tr.beyond(p, bd + tie) {
-                        continue;
-                    }
-                    let d = tr.distance(p);
-                    if d < bd - tie {
-                        (bd, bt, bcos) = (d, t, f64::NAN);
-                    } else if (d - bd).abs() <= tie {
-                        // Ties go to the triangle facing the node most, then the lowest index.
-                        if bcos.is_nan() {
-                            bcos = tris[bt as usize].cos(p);
-                        }
-                        let cos = tr.cos(p);
-                        if cos > bcos || (cos == bcos && t < bt) {
-                            (bd, bt, bcos) = (d, t, cos);
-                        }
-                    }
-                }
-                (bt != own).then_some((bd, bt))
-            })
-            .collect();
-        let mut changed = false;
-        for (&i, r) in visit.iter().zip(res) {
-            let Some((d, t)) = r else { continue };
-            let i = i as usize;
-            changed = true;
-            best[i] = t;
-            dist[i] = d;
-            mark[i] = true;
-            for &j in &nbr[i] {
-                if j != NONE {
-                    mark[j as usize] = true;
-                }
-            }
-        }
-        if !changed {
-            break;
-        }
-        visit.clear();
-        for (i, m) in mark.iter_mut().enumerate() {
-            if std::mem::take(m) {
-                visit.push(i as u32);
-            }
-        }
-    }
+    propagate(
+        &tris,
+        &nbr,
+        &|i| lat.pos(coords[i]),
+        layers,
+        1e-12 * lat.h,
+        &mut best,
+        &mut dist,
+    );
     // The distance to the trilinear zero level from the nearest triangle, and the side of it.
     let (dist, side): (Vec<f64>, Vec<f64>) = (0..coords.len())
         .into_par_iter()
@@ -560,6 +425,53 @@ mod tests {
     use super::*;
     use crate::backends::dtgrid::lattice::{band_around, crossing_cells_of_fn, NarrowBand};
     use crate::backends::dtgrid::DtGrid;
+
+    #[test]
+    fn passes_over_changed_neighbours_equal_full_passes() {
+        // Arbitrary seeds (every fifth node, a scattered triangle), then the propagation against
+        // full Jacobi passes that measure every neighbour's triangle at every node.
+        let lat = Lattice::unit(29).unwrap();
+        let f = |p: DVec3| (p.x / 0.3).powi(2) + (p.y / 0.25).powi(2) + (p.z / 0.2).powi(2) - 1.0;
+        let cross = crossing_cells_of_fn(&lat, &f).unwrap();
+        let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, 2).unwrap();
+        let phi: Vec<f64> = nb.band.coords().map(|c| f(lat.pos(c))).collect();
+        let l = level(&lat, &nb.band, &phi);
+        let tris: Vec<Tri> = l.tris.iter().map(|&t| Tri::new(t)).collect();
+        let coords: Vec<C3> = nb.band.coords().collect();
+        let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
+        let pos = |i: usize| lat.pos(coords[i]);
+        let tie = 1e-12 * lat.h;
+        let n = coords.len();
+        for layers in [1, 2, 8] {
+            let mut best = vec![NONE; n];
+            let mut dist = vec![f64::INFINITY; n];
+            for i in (0..n).step_by(5) {
+                best[i] = ((i * 7919) % tris.len()) as u32;
+                dist[i] = tris[best[i] as usize].distance(pos(i));
+            }
+            let (mut rb, mut rd) = (best.clone(), dist.clone());
+            propagate(&tris, &nbr, &pos, layers, tie, &mut best, &mut dist);
+            for _ in 0..layers {
+                let new: Vec<(f64, u32)> = (0..n)
+                    .map(|i| {
+                        let all = nbr[i]
+                            .iter()
+                            .filter(|&&j| j != NONE)
+                            .map(|&j| rb[j as usize]);
+                        nearest(&tris, pos(i), (rd[i], rb[i]), tie, all)
+                    })
+                    .collect();
+                (rd, rb) = new.into_iter().unzip();
+            }
+            let moved = best.iter().zip(&rb).filter(|(a, b)| a != b).count();
+            assert_eq!(moved, 0, "{layers} passes: {moved} of {n} nodes differ");
+            assert!(dist
+                .iter()
+                .zip(&rd)
+                .all(|(a, b)| a.to_bits() == b.to_bits()));
+            assert!(rb.iter().filter(|&&t| t != NONE).count() > n / 2);
+        }
+    }
 
     #[test]
     fn sphere_distance_and_kept_zero_level() {

@@ -12,9 +12,9 @@
 //! conditions take one solve per step on the band of `Φ^k`.
 
 use super::band::Band;
-use super::distance::{extend_distance, zero_level_integral, Keep};
+use super::distance::{extend_distance, extend_from_level, level, zero_level_integral, Keep};
 use super::fem::{elements, transparent_vector, Weight};
-use super::lattice::{band_around, crossing_cells_of_band, Lattice, NarrowBand, C3};
+use super::lattice::{band_around, Lattice, NarrowBand, C3};
 use super::scheme::{solve_all, solve_dirichlet_rtol, Bc};
 use super::stencil::assemble_scaled;
 use crate::error::{Error, Result};
@@ -230,15 +230,17 @@ pub fn rebuild_keeping<B: Band<Coord = C3>>(
     phi: &[f64],
     keep: Keep,
 ) -> Result<(NarrowBand<B>, Vec<f64>)> {
-    let cross = crossing_cells_of_band(&nb.band, phi);
-    let new: NarrowBand<B> = band_around(lat, &cross, nb.j).map_err(|e| match e {
+    // One pass over the old band's cells gives the crossed cells and their triangles.
+    let l = level(lat, &nb.band, phi);
+    let new: NarrowBand<B> = band_around(lat, &l.crossing_cells(), nb.j).map_err(|e| match e {
         Error::EmptyLevelSet(_) => Error::EmptyLevelSet(
             "the zero level vanished during the motion (no band cell is crossed)".into(),
         ),
         e => e,
     })?;
-    let d = extend_distance(
+    let d = extend_from_level(
         lat,
+        &l,
         &nb.band,
         phi,
         &new.band,

@@ -27,6 +27,7 @@ pub mod shape_heat;
 mod sorted;
 pub mod stencil;
 pub mod surface;
+mod zero_level;
 
 pub use backend::{DtGridBackend, DtGridOptions};
 pub use band::{Band, GridCoord};

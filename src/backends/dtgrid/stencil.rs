@@ -231,8 +231,10 @@ pub fn assemble_scaled(
                         continue;
                     }
                     mass[ia - lo] += mw;
+                    // The row's start and pattern, loaded once for its eight couplings.
+                    let (start, m) = (row_ptr[ia] - base, mask[ia]);
                     for (b, &ib) in e.1.iter().enumerate() {
-                        let p = pos(ia, CODE[a][b]) - base;
+                        let p = start + (m & ((1u32 << CODE[a][b]) - 1)).count_ones() as usize;
                         val[p] += tau * ke[a * 8 + b];
                         col[p] = ib;
                     }
