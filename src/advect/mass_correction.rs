@@ -2,12 +2,14 @@
 //! constant over the domain, we use an optimization scheme to determine a constant value by which
 //! the level set is normalized so as to preserve the total mass").
 //!
-//! Finds `c` with `A(c) = |{u + c < 0}| = target`, where `A` is the exact area of the negative
-//! part of the P1 field. `A` is continuous and non-increasing in `c`, equal to the whole mesh
-//! area for `c ≤ -max u` and to 0 for `c ≥ -min u`, so a root is bracketed; it is found by the
-//! Illinois variant of regula falsi with bisection as safeguard.
+//! Finds `c` with `A(c) = |{u + c < 0}| = target`, where `A` is the exact area (volume on
+//! tetrahedra) of the negative part of the P1 field. `A` is continuous and non-increasing in
+//! `c`, equal to the whole mesh's for `c ≤ -max u` and to 0 for `c ≥ -min u`, so a root is
+//! bracketed; it is found by the Illinois variant of regula falsi with bisection as safeguard.
 
 use crate::error::{Error, Result};
+use crate::geom::{simplex, DVec3};
+use crate::levelset::enclosed_measure;
 use crate::levelset::interface::enclosed_area;
 use crate::mesh::{check_p1_field, Mesh2};
 
@@ -16,9 +18,9 @@ use crate::mesh::{check_p1_field, Mesh2};
 pub struct MassCorrection {
     /// The shift added to every nodal value.
     pub shift: f64,
-    /// The area of `{u < 0}` before the shift.
+    /// The area (volume on tetrahedra) of `{u < 0}` before the shift.
     pub area_before: f64,
-    /// The area of `{u < 0}` after the shift.
+    /// The area (volume on tetrahedra) of `{u < 0}` after the shift.
     pub area_after: f64,
     /// Evaluations of the area function.
     pub iterations: usize,
@@ -39,10 +41,45 @@ pub fn correct_mass(
     rel_tol: f64,
 ) -> Result<MassCorrection> {
     check_p1_field(mesh.n_points(), u, "level set")?;
-    let total = mesh.area();
+    correct_measure(|s| enclosed_area(mesh, s), mesh.area(), u, target, rel_tol)
+}
+
+/// Shifts the P1 field `u` on the tetrahedra `tets` over `points` in place by the constant `c`
+/// such that the volume of `{u < 0}` equals `target` (relative tolerance `rel_tol`): the 3D
+/// form of [`correct_mass`]. Errors: a bad field or cell, a target outside `(0, |mesh|)`.
+pub fn correct_volume(
+    points: &[DVec3],
+    tets: &[[u32; 4]],
+    u: &mut [f64],
+    target: f64,
+    rel_tol: f64,
+) -> Result<MassCorrection> {
+    enclosed_measure(points, tets, u)?;
+    let total = tets
+        .iter()
+        .map(|t| simplex::volume(&t.map(|v| points[v as usize])).abs())
+        .sum();
+    correct_measure(
+        |s| enclosed_measure(points, tets, s),
+        total,
+        u,
+        target,
+        rel_tol,
+    )
+}
+
+/// The shift of `u` making `measure(u + c) = target` (module documentation), for a measure of
+/// the negative part that is `total` for `c ≤ -max u` and 0 for `c ≥ -min u`.
+fn correct_measure(
+    measure: impl Fn(&[f64]) -> Result<f64>,
+    total: f64,
+    u: &mut [f64],
+    target: f64,
+    rel_tol: f64,
+) -> Result<MassCorrection> {
     if !(target > 0.0 && target < total) {
         return Err(Error::InvalidInput(format!(
-            "mass correction: target area {target} is not in (0, {total})"
+            "mass correction: target measure {target} is not in (0, {total})"
         )));
     }
     if rel_tol.is_nan() || rel_tol <= 0.0 {
@@ -55,8 +92,11 @@ pub fn correct_mass(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
             (a.min(v), b.max(v))
         });
-    let area_before = enclosed_area(mesh, u)?;
-    let f = |c: f64| shifted_area(mesh, u, c).map(|a| a - target);
+    let area_before = measure(u)?;
+    let f = |c: f64| {
+        let s: Vec<f64> = u.iter().map(|v| v + c).collect();
+        measure(&s).map(|a| a - target)
+    };
     // Bracket: f(a) >= 0 >= f(b).
     let span = (umax - umin).max(1e-300);
     let (a, b) = (-umax - 1e-9 * span, -umin + 1e-9 * span);

@@ -5,7 +5,7 @@
 //! - [`evaluate`]: evaluation of a P1 field at a located point (P1 or limited quadratic);
 //! - [`galerkin`]: one step `u^{n+1} = u^n ∘ X^n`, nodal or L2-projected (004 eq. (2));
 //! - [`transfer`]: interpolation and conservative projection between meshes;
-//! - [`mass_correction`]: constant shift restoring the enclosed area (004 §5.1);
+//! - [`mass_correction`]: constant shift restoring the enclosed area or volume (004 §5.1);
 //! - [`fixed_point`]: the transient fixed-point adaptation over a period (004 §3.5);
 //! - [`expr_velocity`]: a velocity field from two expressions in `x`, `y`, `t`;
 //! - [`run`](mod@run): a whole transport run of any level set in any velocity field, with the
@@ -30,7 +30,7 @@ pub use evaluate::{Derivatives, FieldEvaluator, Inflow, Interpolation};
 pub use expr_velocity::ExprVelocity;
 pub use fixed_point::{advance_period, Adapter, FixedPointOptions, IdentityAdapter, PeriodResult};
 pub use galerkin::{advect, AdvectOptions, Form};
-pub use mass_correction::{correct_mass, MassCorrection};
+pub use mass_correction::{correct_mass, correct_volume, MassCorrection};
 pub use run::{run, MeshFamily, RunOptions, RunResult, Snapshot, StepStats};
 pub use shape_error::{hausdorff, symmetric_difference};
 

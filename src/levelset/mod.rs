@@ -7,6 +7,7 @@ pub mod compare;
 pub mod compare3;
 pub mod compare_radial;
 pub mod expr;
+pub mod implicit_volume;
 pub mod interface;
 pub mod measure;
 pub mod radial;
@@ -16,6 +17,7 @@ mod surface;
 pub mod triangulated;
 
 pub use expr::{Expr, Variables};
+pub use implicit_volume::implicit_volume;
 pub use interface::{
     enclosed_area, extract_zero_level, interface_distance, interface_length, InterfaceError,
     Polyline,
