@@ -475,8 +475,8 @@ fn explore_sphere3() {
     let eps: f64 = env("X_EPS", "0.2").parse().unwrap();
     let band: f64 = env("X_BAND", "2").parse().unwrap();
     let tauf: f64 = env("X_TAUF", "0.25").parse().unwrap();
-    let (r0, t_end) = (2.0, 0.1);
-    let exact = (r0 * r0 - 4.0 * t_end as f64).sqrt();
+    let (r0, t_end): (f64, f64) = (2.0, 0.1);
+    let exact = (r0 * r0 - 4.0 * t_end).sqrt();
     let sphere = move |p: DVec3| p.length() - r0;
     for h in hs {
         let start = std::time::Instant::now();
