@@ -38,8 +38,8 @@ const Q_REPAIR: f64 = 0.55;
 /// Most rounds of the loop.
 const ROUNDS: usize = 16;
 
-/// The share of edges with metric length in `[l_min, l_max]` (lengths as the loop sees them,
-/// [`loop_length`]).
+/// The share of edges with metric length in `[l_min, l_max]` (lengths as the operators see
+/// them, [`Ctx::length`]).
 pub(crate) fn in_range_share(ctx: &Ctx<'_>) -> f64 {
     let (mut n, mut inr) = (0usize, 0usize);
     for_each_edge_length(ctx, |_, _, l| {
@@ -51,42 +51,6 @@ pub(crate) fn in_range_share(ctx: &Ctx<'_>) -> f64 {
     inr as f64 / n.max(1) as f64
 }
 
-/// Lengths from the end metrics ([`Ctx::length`]) within this factor of `l_min` or `l_max`
-/// are integrated along the edge ([`loop_length`]).
-const NEAR: f64 = 1.25;
-
-/// Gauss panels (two points each) of the integrated length.
-const PANELS: usize = 4;
-
-/// The metric length of the edge `(a, b)` as the loop judges it. The length from the end
-/// metrics (the geometric interpolation of the length density, [`Ctx::length`]) is not the
-/// length in the field: where the size varies linearly along the edge the true length is
-/// the smaller `la lb ln(la/lb) / (la − lb)` (004 §3.3; [`crate::metric::length::linear_size_length`]),
-/// and across a kink of the size it is larger. So near the ends of `[l_min, l_max]` (within
-/// [`NEAR`]) the length is integrated in the source field, `∫_0^1 sqrt(eᵀ M(a + t e) e) dt`
-/// by [`PANELS`] panels of 2-point Gauss quadrature, as the UGAWG statistics integrate it
-/// ([`crate::metric::conformity_analytic`]); elsewhere, and without a source, the end-metric
-/// length is used. On UGAWG cube-linear 81 of the 986 edges the statistics measure shorter than
-/// `1/√2` had an end-metric length in range.
-pub(crate) fn loop_length(ctx: &Ctx<'_>, a: u32, b: u32) -> f64 {
-    let l = ctx.length(a, b);
-    let near = (ctx.l_min / NEAR..ctx.l_min * NEAR).contains(&l)
-        || (ctx.l_max / NEAR..ctx.l_max * NEAR).contains(&l);
-    let Some(f) = ctx.source.filter(|_| near) else {
-        return l;
-    };
-    let (pa, pb) = (ctx.mesh.points[a as usize], ctx.mesh.points[b as usize]);
-    let e = pb - pa;
-    let h = 1.0 / PANELS as f64;
-    let g = 0.5 * h / 3f64.sqrt();
-    let mut s = 0.0;
-    for k in 0..PANELS {
-        let c = (k as f64 + 0.5) * h;
-        s += f(pa + e * (c - g)).quad(e).sqrt() + f(pa + e * (c + g)).quad(e).sqrt();
-    }
-    0.5 * h * s
-}
-
 /// Calls `f(a, b, length)` once for every edge `a < b` of the live mesh, in vertex order.
 fn for_each_edge_length(ctx: &Ctx<'_>, mut f: impl FnMut(u32, u32, f64)) {
     let mut nb = Vec::new();
@@ -96,7 +60,7 @@ fn for_each_edge_length(ctx: &Ctx<'_>, mut f: impl FnMut(u32, u32, f64)) {
         }
         ctx.mesh.vertex_neighbours(a, &mut nb);
         for &b in nb.iter().filter(|&&b| b > a) {
-            f(a, b, loop_length(ctx, a, b));
+            f(a, b, ctx.length(a, b));
         }
     }
 }
@@ -119,7 +83,7 @@ pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
     let short = short_edges(ctx);
     let mut count = 0;
     for (_, a, b) in short {
-        if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || loop_length(ctx, a, b) >= ctx.l_min {
+        if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || ctx.length(a, b) >= ctx.l_min {
             continue;
         }
         let Some(mg) = super::merge::best_merge(ctx, a, b) else {
@@ -298,49 +262,4 @@ pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptRepo
         }
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh3::{EditMesh3, Mesh3};
-    use crate::metric::length::linear_size_length;
-
-    /// The size `0.02 + z` across, 1 along x and y.
-    fn layer(p: DVec3) -> Sym3 {
-        let h = 0.02 + p.z;
-        Sym3::new(1.0, 0.0, 0.0, 1.0, 0.0, 1.0 / (h * h))
-    }
-
-    /// Near `l_min` the loop measures an edge in the field: along an edge of linearly varying
-    /// size the exact length `∫ dz / h` is reproduced to 5e-5, where the end-metric length is
-    /// off by more than 3 %; far from `[l_min, l_max]`'s ends the end-metric length is kept.
-    #[test]
-    fn near_the_bounds_lengths_are_integrated_in_the_field() {
-        // ln((0.02 + L) / 0.02) = 0.75: an edge along z just above l_min.
-        let lz = 0.02 * (0.75f64.exp() - 1.0);
-        let mesh = Mesh3::kuhn_box(DVec3::ZERO, DVec3::new(3.0, 3.0, lz), [1; 3]).unwrap();
-        let edit = EditMesh3::from_mesh(&mesh).unwrap();
-        let metric: Vec<Sym3> = edit.points.iter().map(|&p| layer(p)).collect();
-        let f: &(dyn Fn(DVec3) -> Sym3 + Sync) = &layer;
-        let ctx = Ctx::new(edit, metric, Some(f));
-        let at = |p: DVec3| {
-            ctx.mesh
-                .points
-                .iter()
-                .position(|&q| (q - p).length() < 1e-12)
-                .unwrap() as u32
-        };
-        let (a, b) = (at(DVec3::ZERO), at(DVec3::new(0.0, 0.0, lz)));
-        assert!(ctx.mesh.is_edge(a, b));
-        let exact = linear_size_length(lz / 0.02, lz / (0.02 + lz));
-        assert!((exact - 0.75).abs() < 1e-12);
-        let (ends, field) = (ctx.length(a, b), loop_length(&ctx, a, b));
-        assert!((field - exact).abs() < 5e-5 * exact, "{field} vs {exact}");
-        assert!(ends > 1.03 * exact, "{ends} vs {exact}");
-        // An edge of length 3 along x: far from both ends of the range.
-        let c = at(DVec3::new(3.0, 0.0, 0.0));
-        assert!(ctx.mesh.is_edge(a, c));
-        assert_eq!(loop_length(&ctx, a, c), ctx.length(a, c));
-    }
 }
