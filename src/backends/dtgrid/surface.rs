@@ -12,7 +12,7 @@ use crate::levelset::TriangleSurface;
 use std::collections::HashMap;
 
 /// The Kuhn tetrahedra of a cube: corners `0, 2^a, 2^a + 2^b, 7` for each axis order `(a, b)`.
-const KUHN: [[usize; 4]; 6] = [
+pub(super) const KUHN: [[usize; 4]; 6] = [
     [0, 1, 3, 7],
     [0, 1, 5, 7],
     [0, 2, 3, 7],

@@ -5,17 +5,8 @@
 
 use super::band::Band;
 use super::lattice::{crosses, Lattice, C3};
+use super::surface::KUHN;
 use crate::geom::DVec3;
-
-/// The Kuhn tetrahedra of a cube: corners `0, 2^a, 2^a + 2^b, 7` for each axis order `(a, b)`.
-const KUHN: [[usize; 4]; 6] = [
-    [0, 1, 3, 7],
-    [0, 1, 5, 7],
-    [0, 2, 3, 7],
-    [0, 2, 6, 7],
-    [0, 4, 5, 7],
-    [0, 4, 6, 7],
-];
 
 /// The triangles of the zero level with the corner values of their cells.
 pub(crate) struct Level {
