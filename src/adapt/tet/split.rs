@@ -7,7 +7,7 @@
 //! splitting them all refined the layer tangentially far beyond the metric). A boundary
 //! edge's midpoint lies on its boundary plane or ridge, so the boundary keeps its shape.
 
-use super::Ctx;
+use super::{mean_ratio, Ctx};
 use crate::adapt::pass::{run_pass, Operator};
 use crate::geom::DVec3;
 use crate::metric::Sym3;
@@ -19,6 +19,42 @@ use crate::metric::Sym3;
 /// boundary's too) left slivers of mean ratio 0.16 next to the ridges (98.14 %, 13.7 s), and
 /// 0.5 on every edge 97.98 % / 0.149.
 pub(crate) const FILTER: f64 = 0.7;
+
+/// A split may not turn a tetrahedron of its shell into a child below this mean ratio, both
+/// in the metric and in the Euclidean sense, unless the child is at least as good as its
+/// parent in one of them. Without it the edges of a poor tetrahedron that are long in the
+/// metric but short across it were split pass after pass, each split halving the volume of a
+/// child and its quality with it: the 004 star ended with thousands of tetrahedra of mean
+/// ratio down to 1e-13 along its deepest valleys, four vertices on one line (allowing each
+/// split to lose a quarter of the quality only slowed the fall). The Euclidean half lets
+/// through the splits of a start mesh that is poor only in the metric (UGAWG cube-linear's
+/// Kuhn mesh: worst 0.004 in the metric, whose splits are what makes it good).
+pub(crate) const QUALITY_FLOOR: f64 = 0.02;
+
+/// Whether splitting `(a, b)` at `p` (metric `m`) keeps every child of the shell's
+/// tetrahedra out of the degenerating splits of [`QUALITY_FLOOR`].
+fn keeps_quality(ctx: &Ctx<'_>, a: u32, b: u32, p: DVec3, m: &Sym3) -> bool {
+    let mut shell = Vec::new();
+    ctx.mesh.shell(a, b, &mut shell);
+    let euclid = |tet: [u32; 4], moved: Option<u32>| {
+        let q = tet.map(|v| {
+            if Some(v) == moved {
+                p
+            } else {
+                ctx.mesh.points[v as usize]
+            }
+        });
+        mean_ratio(q, &[Sym3::IDENTITY; 4])
+    };
+    shell.iter().all(|&t| {
+        let tet = ctx.mesh.tets[t as usize];
+        let in_metric = QUALITY_FLOOR.min(ctx.tet_quality(t));
+        let in_space = QUALITY_FLOOR.min(euclid(tet, None));
+        [a, b].iter().all(|&x| {
+            ctx.quality_of(tet, Some((x, p, m))) >= in_metric || euclid(tet, Some(x)) >= in_space
+        })
+    })
+}
 
 /// Whether a vertex inserted earlier in this pass and adjacent to `a` or `b` lies within
 /// metric length `ctx.split_filter` of the new point `p` (metric `m`): the insertion filter
@@ -106,6 +142,9 @@ impl Operator<Ctx<'_>> for Split {
         let m = ctx.metric_on_edge(a, b, t, p);
         let boundary = ctx.mesh.on_boundary[a as usize] && ctx.mesh.on_boundary[b as usize];
         if ctx.split_filter > 0.0 && !boundary && too_close(ctx, a, b, p, &m) {
+            return None;
+        }
+        if !keeps_quality(ctx, a, b, p, &m) {
             return None;
         }
         Some(Plan { a, b, p, m })

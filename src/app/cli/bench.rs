@@ -30,6 +30,33 @@ pub enum Bench {
     /// anisomesh and mmg3d_O3 on the same metric in the same run (CPU seconds, vertices per
     /// second, edges in range, worst mean ratio). One thread: RAYON_NUM_THREADS=1.
     Tet(TetArgs),
+    /// Accuracy per vertex on the 004 star surface: `adapt --dim 3 --shape star` and mmg3d_O3
+    /// `-ls -hausd` on Kuhn cubes in the same run, both measured against the exact surface
+    /// (distances both ways, volume error). One thread: RAYON_NUM_THREADS=1.
+    Star(StarArgs),
+}
+
+/// Options of `anisomesh bench star`.
+#[derive(Debug, Args)]
+pub struct StarArgs {
+    /// Our eq. (6) setting (without --hmin: 5 eps, at most 0.01; without --band: hmin / 2).
+    #[command(flatten)]
+    metric: super::metric_args::MetricArgs,
+    /// Cells per side of mmg3d's Kuhn input meshes of [-1, 1]^3 (comma-separated).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![64])]
+    cubes: Vec<usize>,
+    /// mmg3d's -hausd.
+    #[arg(long, default_value_t = 1e-3)]
+    hausd: f64,
+    /// Without mmg3d.
+    #[arg(long)]
+    no_mmg3d: bool,
+    /// Time limit of each mmg3d run, in seconds.
+    #[arg(long, default_value_t = 3600)]
+    timeout: u64,
+    /// Output directory (the meshes, bench_star.json, bench_star.csv).
+    #[arg(short, long, default_value = "out/bench_star")]
+    output: PathBuf,
 }
 
 /// Options of `anisomesh bench tet`.
@@ -107,6 +134,7 @@ pub fn run(b: Bench) -> Result<()> {
         Bench::Band(a) => crate::app::repro::band_memory::run(a),
         Bench::SurfaceDistance(a) => crate::app::repro::surface_distance::run(a),
         Bench::Tet(a) => tet(a),
+        Bench::Star(a) => star(a),
     }
 }
 
@@ -129,6 +157,44 @@ fn tet(a: TetArgs) -> Result<()> {
             r.quality_min
         );
     })?;
+    Ok(())
+}
+
+fn star(a: StarArgs) -> Result<()> {
+    let b = super::bench_star::StarBench {
+        metric: a
+            .metric
+            .apply_tet(anisomesh::adapt::Run3Options::default().metric),
+        cubes: &a.cubes,
+        hausd: a.hausd,
+        with_mmg3d: !a.no_mmg3d,
+        timeout: Duration::from_secs(a.timeout),
+        dir: &a.output,
+    };
+    println!(
+        "{:<10} {:<26} {:>9} {:>8} {:>8}  {:>29}  {:>29}  {:>10}",
+        "mesher",
+        "setting",
+        "vertices",
+        "cpu_s",
+        "wall_s",
+        "exact->discrete med/p99/max",
+        "discrete->exact med/p99/max",
+        "vol_error"
+    );
+    super::bench_star::run(&b, |r| {
+        let c = &r.comparison;
+        let (e, d) = (&c.exact_to_discrete, &c.discrete_to_exact);
+        println!(
+            "{:<10} {:<26} {:>9} {:>8.1} {:>8.1}  {:>9.2e} {:>9.2e} {:>9.2e}  {:>9.2e} {:>9.2e} {:>9.2e}  {:>+10.3e}",
+            r.mesher, r.setting, r.vertices, r.cpu, r.wall, e.median, e.p99, e.max, d.median,
+            d.p99, d.max, c.volume_error
+        );
+    })?;
+    println!(
+        "(exact volume 0.4805422178; files in {})",
+        a.output.display()
+    );
     Ok(())
 }
 

@@ -43,7 +43,7 @@ pub struct TetSpeedRow {
 
 /// CPU seconds used so far by this process (`who = RUSAGE_SELF`) or by its finished children
 /// (`RUSAGE_CHILDREN`).
-fn cpu_seconds(who: i32) -> f64 {
+pub(super) fn cpu_seconds(who: i32) -> f64 {
     // SAFETY: getrusage writes into the zeroed struct we own.
     let mut u: libc::rusage = unsafe { std::mem::zeroed() };
     if unsafe { libc::getrusage(who, &mut u) } != 0 {

@@ -5,6 +5,7 @@ mod adapt;
 mod adapt3;
 mod advect;
 mod bench;
+mod bench_star;
 mod bench_tet;
 mod convert;
 mod crosscheck;
