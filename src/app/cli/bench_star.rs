@@ -8,9 +8,9 @@
 //! surface by [`anisomesh::levelset::compare_radial`]: distances both ways (median, 99th
 //! percentile, maximum) and the enclosed volume against the exact 0.4805422178.
 
-use super::bench_tet::cpu_seconds;
+use super::bench_tet::{cpu_seconds, run_mmg3d};
 use super::ugawg::to_medit3;
-use crate::app::repro::peers::{find_program, run_with_timeout};
+use crate::app::repro::peers::find_program;
 use anisomesh::adapt::{run3, LevelSetMetric, Run3Options, Target3};
 use anisomesh::io::{self, atomic_write, Sol};
 use anisomesh::levelset::compare_radial::{
@@ -21,7 +21,6 @@ use anisomesh::mesh3::Mesh3;
 use anisomesh::{DVec3, Error, Result};
 use serde::Serialize;
 use std::path::Path;
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 /// The exact surface is sampled on the icosahedron refined this many times (as `measure`).
@@ -138,30 +137,17 @@ fn mmg3d(prog: &Path, n: usize, b: &StarBench<'_>) -> Result<StarRow> {
     io::write_medit3(&mesh_in, &to_medit3(&start))?;
     let u: Vec<f64> = start.points.iter().map(|&p| level_set(p)).collect();
     io::write_sol(&sol_in, &Sol::scalar_dim(3, u))?;
-    let c0 = cpu_seconds(libc::RUSAGE_CHILDREN);
-    let out = run_with_timeout(
-        Command::new(prog)
-            .arg("-in")
-            .arg(&mesh_in)
-            .arg("-sol")
-            .arg(&sol_in)
-            .arg("-ls")
-            .arg("-hausd")
-            .arg(b.hausd.to_string())
-            .arg("-out")
-            .arg(&mesh_out),
+    let hausd = b.hausd.to_string();
+    let (wall, cpu) = run_mmg3d(
+        prog,
+        &mesh_in,
+        &sol_in,
+        &["-ls", "-hausd", &hausd],
+        &mesh_out,
         b.timeout,
         b.dir,
         &tag,
     )?;
-    let cpu = cpu_seconds(libc::RUSAGE_CHILDREN) - c0;
-    if !out.success {
-        return Err(Error::InvalidInput(format!(
-            "mmg3d_O3 -ls on {} failed{}",
-            mesh_in.display(),
-            if out.timed_out { " (time limit)" } else { "" }
-        )));
-    }
     let m = io::read_medit3(&mesh_out)?;
     let (t, v) = interface_triangles(&m.points, &m.tets, &m.tet_ref, 3, 2)?;
     Ok(StarRow {
@@ -169,7 +155,7 @@ fn mmg3d(prog: &Path, n: usize, b: &StarBench<'_>) -> Result<StarRow> {
         setting: format!("{n}^3 cubes, -hausd {:.0e}", b.hausd),
         vertices: m.points.len(),
         cpu,
-        wall: out.seconds,
+        wall,
         comparison: compare(&t, v)?,
     })
 }

@@ -53,6 +53,46 @@ pub(super) fn cpu_seconds(who: i32) -> f64 {
     t(u.ru_utime) + t(u.ru_stime)
 }
 
+/// Runs `prog -in MESH -sol SOL [extra] -out OUT` with a time limit (logs in `dir`, named
+/// `tag`); returns the outcome's wall-clock seconds and the child's CPU seconds. Errors: the
+/// run failed or timed out.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn run_mmg3d(
+    prog: &Path,
+    mesh_in: &Path,
+    sol_in: &Path,
+    extra: &[&str],
+    mesh_out: &Path,
+    timeout: Duration,
+    dir: &Path,
+    tag: &str,
+) -> Result<(f64, f64)> {
+    let c0 = cpu_seconds(libc::RUSAGE_CHILDREN);
+    let out = run_with_timeout(
+        Command::new(prog)
+            .arg("-in")
+            .arg(mesh_in)
+            .arg("-sol")
+            .arg(sol_in)
+            .args(extra)
+            .arg("-out")
+            .arg(mesh_out),
+        timeout,
+        dir,
+        tag,
+    )?;
+    let cpu = cpu_seconds(libc::RUSAGE_CHILDREN) - c0;
+    if !out.success {
+        return Err(Error::InvalidInput(format!(
+            "{} on {} failed{}",
+            prog.display(),
+            mesh_in.display(),
+            if out.timed_out { " (time limit)" } else { "" }
+        )));
+    }
+    Ok((out.seconds, cpu))
+}
+
 /// Runs every scale of `targets` (vertex counts), calling `row` after each mesher; mmg3d is
 /// skipped when `with_mmg3d` is false or it is not installed (a row is not printed then).
 pub fn run(
@@ -108,27 +148,8 @@ pub fn run(
         io::write_medit3(&mesh_in, &to_medit3(&start))?;
         let field: Vec<_> = start.points.iter().map(|&p| metric(p)).collect();
         io::write_sol(&sol_in, &Sol::metric3(&field))?;
-        let c0 = cpu_seconds(libc::RUSAGE_CHILDREN);
-        let out = run_with_timeout(
-            Command::new(prog)
-                .arg("-in")
-                .arg(&mesh_in)
-                .arg("-sol")
-                .arg(&sol_in)
-                .arg("-out")
-                .arg(&mesh_out),
-            timeout,
-            dir,
-            &tag,
-        )?;
-        let cpu = cpu_seconds(libc::RUSAGE_CHILDREN) - c0;
-        if !out.success {
-            return Err(Error::InvalidInput(format!(
-                "mmg3d_O3 on {} failed{}",
-                mesh_in.display(),
-                if out.timed_out { " (time limit)" } else { "" }
-            )));
-        }
+        let (wall_mmg, cpu) =
+            run_mmg3d(prog, &mesh_in, &sol_in, &[], &mesh_out, timeout, dir, &tag)?;
         let m = io::read_medit3(&mesh_out)?;
         let c = conformity_analytic(&m.points, &m.tets, &metric)?;
         let theirs = TetSpeedRow {
@@ -136,7 +157,7 @@ pub fn run(
             target: n,
             vertices: m.points.len(),
             cpu,
-            wall: out.seconds,
+            wall: wall_mmg,
             in_range: c.edge_length_in_range,
             quality_min: c.mean_ratio_min,
         };
