@@ -50,12 +50,18 @@ fn rating(ctx: &Ctx<'_>, t: [u32; 4], moved: Option<(u32, DVec3, &Sym3)>) -> f64
     q.min(crate::metric::conformity::mean_ratio(pts, &big))
 }
 
-/// The worst rating of the ball of `v` with `v` at `p` with metric `m`.
-fn ball_quality_at(ctx: &Ctx<'_>, v: u32, p: DVec3, m: &Sym3) -> f64 {
-    ctx.mesh.ball[v as usize]
-        .iter()
-        .map(|&t| rating(ctx, ctx.mesh.tets[t as usize], Some((v, p, m))))
-        .fold(f64::INFINITY, f64::min)
+/// The worst rating of the ball of `v` with `v` at `p` with metric `m`, or `None` as soon as
+/// one rating is at most `floor`.
+fn ball_rating_above(ctx: &Ctx<'_>, v: u32, p: DVec3, m: &Sym3, floor: f64) -> Option<f64> {
+    let mut q = f64::INFINITY;
+    for &t in &ctx.mesh.ball[v as usize] {
+        let x = rating(ctx, ctx.mesh.tets[t as usize], Some((v, p, m)));
+        if x <= floor {
+            return None;
+        }
+        q = q.min(x);
+    }
+    Some(q)
 }
 
 /// Compass search on the worst quality of the ball of `v` (see the module docs); returns
@@ -87,7 +93,9 @@ pub(crate) fn optimise_vertex(ctx: &mut Ctx<'_>, v: u32) -> bool {
         }
     }
     let (mut p, mut m) = (p0, m0);
-    let mut q = ball_quality_at(ctx, v, p, &m);
+    let Some(mut q) = ball_rating_above(ctx, v, p, &m, f64::NEG_INFINITY) else {
+        return false;
+    };
     let q_start = q;
     let mut step = 0.2;
     while step > 0.024 {
@@ -98,11 +106,10 @@ pub(crate) fn optimise_vertex(ctx: &mut Ctx<'_>, v: u32) -> bool {
                 None => p + step * d,
             };
             let nm = f(np);
-            let nq = ball_quality_at(ctx, v, np, &nm);
-            if nq > q * 1.001
-                && out_of_range(ctx, np, &nm, &nb) <= out0
-                && ctx.mesh.move_valid(v, np)
-            {
+            let Some(nq) = ball_rating_above(ctx, v, np, &nm, q * 1.001) else {
+                continue;
+            };
+            if out_of_range(ctx, np, &nm, &nb) <= out0 && ctx.mesh.move_valid(v, np) {
                 (p, m, q) = (np, nm, nq);
                 moved = true;
                 break;
@@ -138,14 +145,26 @@ pub(crate) fn pass(ctx: &mut Ctx<'_>, q_target: f64) -> usize {
         .collect();
     bad.sort_unstable();
     let mut count = 0;
+    // Per vertex: the stamp at which its search last failed. The search is deterministic, so
+    // it is not repeated while the vertex's ball is unchanged (its stamp is older); every
+    // change starts a new stamp.
+    let n = ctx.mesh.points.len();
+    ctx.stamp.resize(ctx.stamp.len().max(n), 0);
+    let mut failed = vec![0u32; n];
     for (_, t) in bad {
         let tet = ctx.mesh.tets[t as usize];
         if tet[0] == crate::mesh::NONE || rating(ctx, tet, None) >= q_target {
             continue;
         }
         for v in tet {
+            if ctx.stamp[v as usize] < failed[v as usize] {
+                continue;
+            }
             if optimise_vertex(ctx, v) {
                 count += 1;
+                ctx.next_pass();
+            } else {
+                failed[v as usize] = ctx.pass;
             }
         }
         if ctx.mesh.tets[t as usize] != tet || rating(ctx, tet, None) >= q_target {
@@ -164,6 +183,7 @@ pub(crate) fn pass(ctx: &mut Ctx<'_>, q_target: f64) -> usize {
             if mg.q > GAIN * before {
                 super::merge::apply(ctx, mg);
                 count += 1;
+                ctx.next_pass();
                 break;
             }
         }

@@ -219,6 +219,20 @@ impl<'a> Ctx<'a> {
         q
     }
 
+    /// The worst quality of the ball of `v` with `v` at `p` with metric `m`, or `None` as
+    /// soon as one of its tetrahedra is at most `floor` (most trial positions fail early).
+    pub fn ball_quality_above(&self, v: u32, p: DVec3, m: &Sym3, floor: f64) -> Option<f64> {
+        let mut q = f64::INFINITY;
+        for &t in &self.mesh.ball[v as usize] {
+            let x = self.quality_of(self.mesh.tets[t as usize], Some((v, p, m)));
+            if x <= floor {
+                return None;
+            }
+            q = q.min(x);
+        }
+        Some(q)
+    }
+
     /// The worst quality in the ball of `v`.
     pub fn ball_quality(&self, v: u32) -> f64 {
         self.mesh.ball[v as usize]

@@ -69,11 +69,8 @@ impl Operator<Ctx<'_>> for Smooth {
                 Some(f) => f(np),
                 None => ctx.metric[v as usize],
             };
-            let q = ctx.mesh.ball[v as usize]
-                .iter()
-                .map(|&t| ctx.quality_of(ctx.mesh.tets[t as usize], Some((v, np, &m))))
-                .fold(f64::INFINITY, f64::min);
-            if q > q0 * GAIN && ctx.mesh.move_valid(v, np) {
+            let better = ctx.ball_quality_above(v, np, &m, q0 * GAIN).is_some();
+            if better && ctx.mesh.move_valid(v, np) {
                 return Some((v, np, m));
             }
         }
