@@ -29,6 +29,12 @@ pub enum VertexKind {
     Feature,
 }
 
+thread_local! {
+    /// The mark of the current [`EditMesh3::vertex_neighbours`] call and, per vertex, the
+    /// mark of the last call that listed it.
+    static SEEN: std::cell::RefCell<(u32, Vec<u32>)> = const { std::cell::RefCell::new((0, Vec::new())) };
+}
+
 /// A tetrahedral mesh with vertex balls and boundary triangles, for local edits.
 #[derive(Debug, Clone, Default)]
 pub struct EditMesh3 {
@@ -248,15 +254,27 @@ impl EditMesh3 {
     /// The neighbours of `v` (vertices sharing a tetrahedron with it), sorted.
     pub fn vertex_neighbours(&self, v: u32, out: &mut Vec<u32>) {
         out.clear();
-        // Each neighbour appears in about five tetrahedra of the ball: a linear scan of the
-        // few distinct ones so far is cheaper than sorting every occurrence.
-        for &t in &self.ball[v as usize] {
-            for w in self.tets[t as usize] {
-                if w != v && !out.contains(&w) {
-                    out.push(w);
+        // Each neighbour appears in about five tetrahedra of the ball: the first occurrence is
+        // kept by a per-thread mark per vertex, so only the distinct ones are sorted.
+        SEEN.with_borrow_mut(|(mark, seen)| {
+            *mark = mark.wrapping_add(1);
+            if *mark == 0 {
+                seen.fill(0);
+                *mark = 1;
+            }
+            if seen.len() < self.points.len() {
+                seen.resize(self.points.len(), 0);
+            }
+            seen[v as usize] = *mark;
+            for &t in &self.ball[v as usize] {
+                for w in self.tets[t as usize] {
+                    if seen[w as usize] != *mark {
+                        seen[w as usize] = *mark;
+                        out.push(w);
+                    }
                 }
             }
-        }
+        });
         out.sort_unstable();
     }
 
