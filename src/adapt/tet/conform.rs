@@ -65,22 +65,44 @@ fn for_each_edge_length(ctx: &Ctx<'_>, mut f: impl FnMut(u32, u32, f64)) {
     }
 }
 
-/// The edges shorter than `l_min`, shortest first (ties by end points).
-fn short_edges(ctx: &Ctx<'_>) -> Vec<(u64, u32, u32)> {
+/// Whether the ball of `v` changed at or after pass `since` (a vertex added since the stamps
+/// were last resized counts as changed).
+fn changed_since(ctx: &Ctx<'_>, v: u32, since: u32) -> bool {
+    ctx.stamp.get(v as usize).map_or(true, |&s| s >= since)
+}
+
+/// The edges shorter than `l_min` with an end whose ball changed at or after pass `since`,
+/// shortest first (ties by end points). An edge whose two balls are unchanged since the
+/// previous round was refused then and would be again: every verdict of the loop depends
+/// only on the balls of the edge's ends.
+fn short_edges(ctx: &Ctx<'_>, since: u32) -> Vec<(u64, u32, u32)> {
     let mut short = Vec::new();
-    for_each_edge_length(ctx, |a, b, l| {
-        if l < ctx.l_min {
-            short.push((l.to_bits(), a, b));
+    let mut nb = Vec::new();
+    for a in 0..ctx.mesh.points.len() as u32 {
+        if !ctx.mesh.alive(a) || !changed_since(ctx, a, since) {
+            continue;
         }
-    });
+        ctx.mesh.vertex_neighbours(a, &mut nb);
+        // Each edge once: from its smaller end, or from its only changed end.
+        for &b in nb
+            .iter()
+            .filter(|&&b| b > a || !changed_since(ctx, b, since))
+        {
+            let l = ctx.length(a, b);
+            if l < ctx.l_min {
+                short.push((l.to_bits(), a.min(b), a.max(b)));
+            }
+        }
+    }
     short.sort_unstable();
     short
 }
 
-/// One pass of conformity collapses (see the module docs); returns the number applied.
-pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
+/// One pass of conformity collapses (see the module docs) over the short edges with an end
+/// changed at or after pass `since`; returns the number applied.
+pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
     ctx.next_pass();
-    let short = short_edges(ctx);
+    let short = short_edges(ctx, since);
     let mut count = 0;
     for (_, a, b) in short {
         if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || ctx.length(a, b) >= ctx.l_min {
@@ -104,10 +126,11 @@ pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>) -> usize {
 /// edges are all in `[l_min, l_max]` and whose worst quality is at least the old shell's worst
 /// or [`Q_KEEP`]. Each removal takes one short edge away and adds none, and no vertex goes:
 /// the counterpart of a collapse where the collapse would make a long edge or a poor
-/// tetrahedron. Returns the number of removals.
-pub(crate) fn short_edge_removal_pass(ctx: &mut Ctx<'_>) -> usize {
+/// tetrahedron. Only edges with an end changed at or after pass `since` are examined.
+/// Returns the number of removals.
+pub(crate) fn short_edge_removal_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
     ctx.next_pass();
-    let short = short_edges(ctx);
+    let short = short_edges(ctx, since);
     let mut count = 0;
     let mut shell = Vec::new();
     for (_, a, b) in short {
@@ -155,9 +178,9 @@ fn length_energy(ctx: &Ctx<'_>, p: DVec3, m: &Sym3, nb: &[u32]) -> (f64, usize) 
     (e, out)
 }
 
-/// One pass of length smoothing over every live vertex (see the module docs); returns the
-/// number of moves.
-pub(crate) fn length_smooth_pass(ctx: &mut Ctx<'_>) -> usize {
+/// One pass of length smoothing over the live vertices whose ball changed at or after pass
+/// `since` (see the module docs); returns the number of moves.
+pub(crate) fn length_smooth_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
     ctx.next_pass();
     let Some(f) = ctx.source else {
         return 0;
@@ -165,7 +188,7 @@ pub(crate) fn length_smooth_pass(ctx: &mut Ctx<'_>) -> usize {
     let mut nb = Vec::new();
     let mut count = 0;
     for v in 0..ctx.mesh.points.len() as u32 {
-        if !ctx.mesh.alive(v) {
+        if !ctx.mesh.alive(v) || !changed_since(ctx, v, since) {
             continue;
         }
         let normal = match ctx.mesh.vertex_kind(v) {
@@ -240,21 +263,31 @@ pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptRepo
     // The end game splits every long edge it finds: no insertion filter.
     ctx.split_filter = 0.0;
     let mut share = in_range_share(ctx);
+    // Each round examines what changed since the previous one began (everything at first).
+    let mut since = 0;
     for _ in 0..ROUNDS {
-        let nc = record(ctx, PassKind::Collapse, opts, rep, collapse_pass)?
-            + record(ctx, PassKind::Flip, opts, rep, short_edge_removal_pass)?;
+        let round = ctx.pass + 1;
+        let nc = record(ctx, PassKind::Collapse, opts, rep, |c| {
+            collapse_pass(c, since)
+        })? + record(ctx, PassKind::Flip, opts, rep, |c| {
+            short_edge_removal_pass(c, since)
+        })?;
         let ns = record(ctx, PassKind::Split, opts, rep, super::split::pass)?;
         record(ctx, PassKind::Flip, opts, rep, super::swap::pass)?;
-        let nm = record(ctx, PassKind::Smooth, opts, rep, length_smooth_pass)?;
+        let nm = record(ctx, PassKind::Smooth, opts, rep, |c| {
+            length_smooth_pass(c, since)
+        })?;
+        since = round;
         let s = in_range_share(ctx);
         if nc + ns + nm == 0 || s <= share + 1e-4 {
             break;
         }
         share = s;
     }
+    let mut repair = super::improve::Repair::default();
     for _ in 0..3 {
         let n = record(ctx, PassKind::Smooth, opts, rep, |c| {
-            super::improve::pass(c, Q_REPAIR)
+            repair.pass(c, Q_REPAIR)
         })?;
         record(ctx, PassKind::Flip, opts, rep, super::swap::pass)?;
         if n == 0 {

@@ -51,16 +51,31 @@ fn rating(ctx: &Ctx<'_>, t: [u32; 4], moved: Option<(u32, DVec3, &Sym3)>) -> f64
 }
 
 /// The worst rating of the ball of `v` with `v` at `p` with metric `m`, or `None` as soon as
-/// one rating is at most `floor`.
-fn ball_rating_above(ctx: &Ctx<'_>, v: u32, p: DVec3, m: &Sym3, floor: f64) -> Option<f64> {
-    let mut q = f64::INFINITY;
-    for &t in &ctx.mesh.ball[v as usize] {
-        let x = rating(ctx, ctx.mesh.tets[t as usize], Some((v, p, m)));
+/// one rating is at most `floor`. The tetrahedron at `first` in the ball (the last one to
+/// fail or the worst) is rated first, as it is the likeliest to fail again; `first` is left
+/// at the one that failed or the worst.
+fn ball_rating_above(
+    ctx: &Ctx<'_>,
+    v: u32,
+    p: DVec3,
+    m: &Sym3,
+    floor: f64,
+    first: &mut usize,
+) -> Option<f64> {
+    let ball = &ctx.mesh.ball[v as usize];
+    let n = ball.len();
+    let (mut q, mut worst) = (f64::INFINITY, *first);
+    for k in (0..n).map(|k| (k + *first) % n) {
+        let x = rating(ctx, ctx.mesh.tets[ball[k] as usize], Some((v, p, m)));
         if x <= floor {
+            *first = k;
             return None;
         }
-        q = q.min(x);
+        if x < q {
+            (q, worst) = (x, k);
+        }
     }
+    *first = worst;
     Some(q)
 }
 
@@ -93,7 +108,8 @@ pub(crate) fn optimise_vertex(ctx: &mut Ctx<'_>, v: u32) -> bool {
         }
     }
     let (mut p, mut m) = (p0, m0);
-    let Some(mut q) = ball_rating_above(ctx, v, p, &m, f64::NEG_INFINITY) else {
+    let mut first = 0;
+    let Some(mut q) = ball_rating_above(ctx, v, p, &m, f64::NEG_INFINITY, &mut first) else {
         return false;
     };
     let q_start = q;
@@ -106,7 +122,7 @@ pub(crate) fn optimise_vertex(ctx: &mut Ctx<'_>, v: u32) -> bool {
                 None => p + step * d,
             };
             let nm = f(np);
-            let Some(nq) = ball_rating_above(ctx, v, np, &nm, q * 1.001) else {
+            let Some(nq) = ball_rating_above(ctx, v, np, &nm, q * 1.001, &mut first) else {
                 continue;
             };
             if out_of_range(ctx, np, &nm, &nb) <= out0 && ctx.mesh.move_valid(v, np) {
@@ -128,65 +144,85 @@ pub(crate) fn optimise_vertex(ctx: &mut Ctx<'_>, v: u32) -> bool {
     }
 }
 
-/// One repair pass over the tetrahedra below `q_target`; returns the number of changes.
-pub(crate) fn pass(ctx: &mut Ctx<'_>, q_target: f64) -> usize {
-    ctx.next_pass();
-    let mut bad: Vec<(u64, u32)> = (0..ctx.mesh.tets.len() as u32)
-        .filter(|&t| ctx.mesh.tets[t as usize][0] != crate::mesh::NONE)
-        .map(|t| {
-            (
-                rating(ctx, ctx.mesh.tets[t as usize], None)
-                    .max(0.0)
-                    .to_bits(),
-                t,
-            )
-        })
-        .filter(|&(q, _)| f64::from_bits(q) < q_target)
-        .collect();
-    bad.sort_unstable();
-    let mut count = 0;
-    // Per vertex: the stamp at which its search last failed. The search is deterministic, so
-    // it is not repeated while the vertex's ball is unchanged (its stamp is older); every
-    // change starts a new stamp.
-    let n = ctx.mesh.points.len();
-    ctx.stamp.resize(ctx.stamp.len().max(n), 0);
-    let mut failed = vec![0u32; n];
-    for (_, t) in bad {
-        let tet = ctx.mesh.tets[t as usize];
-        if tet[0] == crate::mesh::NONE || rating(ctx, tet, None) >= q_target {
-            continue;
-        }
-        for v in tet {
-            if ctx.stamp[v as usize] < failed[v as usize] {
+/// Repair passes that remember the stamp at which the search from a vertex, and the
+/// contractions of a tetrahedron's edges, last failed: both are deterministic, so they are not
+/// repeated while the balls involved are unchanged (their vertices' stamps are older). Every
+/// change starts a new stamp.
+#[derive(Debug, Default)]
+pub(crate) struct Repair {
+    /// Per vertex: the stamp of its last failed search (0: none).
+    failed: Vec<u32>,
+    /// Per tetrahedron (its vertices): the stamp of its last failed contractions.
+    uncontracted: std::collections::HashMap<[u32; 4], u32>,
+}
+
+impl Repair {
+    /// One repair pass over the tetrahedra below `q_target`; returns the number of changes.
+    pub(crate) fn pass(&mut self, ctx: &mut Ctx<'_>, q_target: f64) -> usize {
+        ctx.next_pass();
+        let mut bad: Vec<(u64, u32)> = (0..ctx.mesh.tets.len() as u32)
+            .filter(|&t| ctx.mesh.tets[t as usize][0] != crate::mesh::NONE)
+            .map(|t| {
+                (
+                    rating(ctx, ctx.mesh.tets[t as usize], None)
+                        .max(0.0)
+                        .to_bits(),
+                    t,
+                )
+            })
+            .filter(|&(q, _)| f64::from_bits(q) < q_target)
+            .collect();
+        bad.sort_unstable();
+        let mut count = 0;
+        let n = ctx.mesh.points.len();
+        ctx.stamp.resize(ctx.stamp.len().max(n), 0);
+        self.failed.resize(n, 0);
+        for (_, t) in bad {
+            let tet = ctx.mesh.tets[t as usize];
+            if tet[0] == crate::mesh::NONE || rating(ctx, tet, None) >= q_target {
                 continue;
             }
-            if optimise_vertex(ctx, v) {
-                count += 1;
-                ctx.next_pass();
-            } else {
-                failed[v as usize] = ctx.pass;
+            for v in tet {
+                if ctx.stamp[v as usize] < self.failed[v as usize] {
+                    continue;
+                }
+                if optimise_vertex(ctx, v) {
+                    count += 1;
+                    ctx.next_pass();
+                } else {
+                    self.failed[v as usize] = ctx.pass;
+                }
             }
-        }
-        if ctx.mesh.tets[t as usize] != tet || rating(ctx, tet, None) >= q_target {
-            continue;
-        }
-        let mut edges: Vec<(f64, u32, u32)> = Vec::with_capacity(6);
-        for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
-            edges.push((ctx.length(tet[i], tet[j]), tet[i], tet[j]));
-        }
-        edges.sort_by(|x, y| x.0.total_cmp(&y.0));
-        for (_, a, b) in edges {
-            let Some(mg) = super::merge::best_merge(ctx, a, b) else {
+            if ctx.mesh.tets[t as usize] != tet || rating(ctx, tet, None) >= q_target {
                 continue;
-            };
-            let before = ctx.ball_quality(a).min(ctx.ball_quality(b));
-            if mg.q > GAIN * before {
-                super::merge::apply(ctx, mg);
-                count += 1;
-                ctx.next_pass();
-                break;
+            }
+            let unchanged = |s: u32| tet.iter().all(|&v| ctx.stamp[v as usize] < s);
+            if self.uncontracted.get(&tet).is_some_and(|&s| unchanged(s)) {
+                continue;
+            }
+            let mut edges: Vec<(f64, u32, u32)> = Vec::with_capacity(6);
+            for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                edges.push((ctx.length(tet[i], tet[j]), tet[i], tet[j]));
+            }
+            edges.sort_by(|x, y| x.0.total_cmp(&y.0));
+            let mut contracted = false;
+            for (_, a, b) in edges {
+                let Some(mg) = super::merge::best_merge(ctx, a, b) else {
+                    continue;
+                };
+                let before = ctx.ball_quality(a).min(ctx.ball_quality(b));
+                if mg.q > GAIN * before {
+                    super::merge::apply(ctx, mg);
+                    count += 1;
+                    ctx.next_pass();
+                    contracted = true;
+                    break;
+                }
+            }
+            if !contracted {
+                self.uncontracted.insert(tet, ctx.pass);
             }
         }
+        count
     }
-    count
 }

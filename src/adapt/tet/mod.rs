@@ -220,17 +220,41 @@ impl<'a> Ctx<'a> {
     }
 
     /// The worst quality of the ball of `v` with `v` at `p` with metric `m`, or `None` as
-    /// soon as one of its tetrahedra is at most `floor` (most trial positions fail early).
-    pub fn ball_quality_above(&self, v: u32, p: DVec3, m: &Sym3, floor: f64) -> Option<f64> {
+    /// soon as one of its tetrahedra is at most `floor` (most trial positions fail early). The
+    /// tetrahedron at `first` in the ball (the worst, or the last to fail) is tried first;
+    /// `first` is left at the one that failed.
+    pub fn ball_quality_above(
+        &self,
+        v: u32,
+        p: DVec3,
+        m: &Sym3,
+        floor: f64,
+        first: &mut usize,
+    ) -> Option<f64> {
+        let ball = &self.mesh.ball[v as usize];
+        let n = ball.len();
         let mut q = f64::INFINITY;
-        for &t in &self.mesh.ball[v as usize] {
-            let x = self.quality_of(self.mesh.tets[t as usize], Some((v, p, m)));
+        for k in (0..n).map(|k| (k + *first) % n) {
+            let x = self.quality_of(self.mesh.tets[ball[k] as usize], Some((v, p, m)));
             if x <= floor {
+                *first = k;
                 return None;
             }
             q = q.min(x);
         }
         Some(q)
+    }
+
+    /// The worst quality in the ball of `v` and its place in the ball.
+    pub fn ball_worst(&self, v: u32) -> (f64, usize) {
+        let mut w = (f64::INFINITY, 0);
+        for (k, &t) in self.mesh.ball[v as usize].iter().enumerate() {
+            let q = self.tet_quality(t);
+            if q < w.0 {
+                w = (q, k);
+            }
+        }
+        w
     }
 
     /// The worst quality in the ball of `v`.

@@ -58,7 +58,7 @@ impl Operator<Ctx<'_>> for Smooth {
         if let Some(n) = normal {
             d -= n * d.dot(n);
         }
-        let q0 = ctx.ball_quality(v);
+        let (q0, mut first) = ctx.ball_worst(v);
         for step in [1.0, 0.5, 0.25] {
             let np = match normal {
                 // Exactly in the plane (an axis-aligned plane's coordinate is kept exactly).
@@ -69,7 +69,9 @@ impl Operator<Ctx<'_>> for Smooth {
                 Some(f) => f(np),
                 None => ctx.metric[v as usize],
             };
-            let better = ctx.ball_quality_above(v, np, &m, q0 * GAIN).is_some();
+            let better = ctx
+                .ball_quality_above(v, np, &m, q0 * GAIN, &mut first)
+                .is_some();
             if better && ctx.mesh.move_valid(v, np) {
                 return Some((v, np, m));
             }
