@@ -302,16 +302,11 @@ impl EditMesh3 {
         let n = ring.len();
         let mut best = [[floor; MAX_RING]; MAX_RING];
         let mut arg = [[0usize; MAX_RING]; MAX_RING];
-        let mut diag_ok = [[true; MAX_RING]; MAX_RING];
-        for i in 0..n {
-            for j in i + 2..n {
-                if !(i == 0 && j == n - 1)
-                    && (self.is_edge(ring[i], ring[j]) || !new_edge(ring[i], ring[j]))
-                {
-                    diag_ok[i][j] = false;
-                }
-            }
-        }
+        // Whether the ring diagonal (i, j) may be created (the closing pair (0, n − 1) is a
+        // ring edge); asked only of pairs some triangle could use.
+        let diag_ok = |i: usize, j: usize| {
+            (i == 0 && j == n - 1) || !self.is_edge(ring[i], ring[j]) && new_edge(ring[i], ring[j])
+        };
         // The worse of the two tetrahedra on the triangle (i, k, j), or anything at most
         // `beat` when it cannot exceed `beat`.
         let tri_q = |i: usize, k: usize, j: usize, beat: f64| -> f64 {
@@ -330,9 +325,7 @@ impl EditMesh3 {
         for len in 2..n {
             for i in 0..n - len {
                 let j = i + len;
-                if !diag_ok[i][j] {
-                    continue;
-                }
+                let mut allowed = None;
                 for k in i + 1..j {
                     let sub_l = if k == i + 1 {
                         f64::INFINITY
@@ -346,6 +339,9 @@ impl EditMesh3 {
                     };
                     if sub_l.min(sub_r) <= best[i][j] {
                         continue;
+                    }
+                    if !*allowed.get_or_insert_with(|| diag_ok(i, j)) {
+                        break;
                     }
                     let q = tri_q(i, k, j, best[i][j]).min(sub_l).min(sub_r);
                     if q > best[i][j] {

@@ -65,56 +65,104 @@ fn for_each_edge_length(ctx: &Ctx<'_>, mut f: impl FnMut(u32, u32, f64)) {
     }
 }
 
-/// Whether the ball of `v` changed at or after pass `since` (a vertex added since the stamps
-/// were last resized counts as changed).
-fn changed_since(ctx: &Ctx<'_>, v: u32, since: u32) -> bool {
-    ctx.stamp.get(v as usize).map_or(true, |&s| s >= since)
+/// Per vertex: whether its ball changed at or after pass `since` (a vertex added since the
+/// stamps were last resized counts as changed); with `rings`, also whether a neighbour's ball
+/// did.
+fn changed_since(ctx: &Ctx<'_>, since: u32, rings: bool) -> Vec<bool> {
+    let n = ctx.mesh.points.len();
+    let mut changed: Vec<bool> = (0..n)
+        .map(|v| ctx.mesh.alive(v as u32) && ctx.stamp.get(v).map_or(true, |&s| s >= since))
+        .collect();
+    if rings && since > 0 {
+        let mut nb = Vec::new();
+        let seeds: Vec<u32> = (0..n as u32).filter(|&v| changed[v as usize]).collect();
+        for v in seeds {
+            ctx.mesh.vertex_neighbours(v, &mut nb);
+            for &w in &nb {
+                changed[w as usize] = true;
+            }
+        }
+    }
+    changed
 }
 
-/// The edges shorter than `l_min` with an end whose ball changed at or after pass `since`,
-/// shortest first (ties by end points). An edge whose two balls are unchanged since the
-/// previous round was refused then and would be again: every verdict of the loop depends
-/// only on the balls of the edge's ends.
-fn short_edges(ctx: &Ctx<'_>, since: u32) -> Vec<(u64, u32, u32)> {
-    let mut short = Vec::new();
+/// The edges shorter than `l_min` with a `changed` end (each from its smaller end, as the
+/// operators measure it: the last bits of a length depend on the direction).
+fn short_edges(ctx: &Ctx<'_>, changed: &[bool], out: &mut Vec<(u64, u32, u32)>) {
     let mut nb = Vec::new();
     for a in 0..ctx.mesh.points.len() as u32 {
-        if !ctx.mesh.alive(a) || !changed_since(ctx, a, since) {
+        if !changed[a as usize] {
             continue;
         }
         ctx.mesh.vertex_neighbours(a, &mut nb);
         // Each edge once: from its smaller end, or from its only changed end.
-        for &b in nb
-            .iter()
-            .filter(|&&b| b > a || !changed_since(ctx, b, since))
-        {
+        for &b in nb.iter().filter(|&&b| b > a || !changed[b as usize]) {
+            let (a, b) = (a.min(b), a.max(b));
             let l = ctx.length(a, b);
             if l < ctx.l_min {
-                short.push((l.to_bits(), a.min(b), a.max(b)));
+                out.push((l.to_bits(), a, b));
             }
         }
     }
-    short.sort_unstable();
-    short
 }
 
-/// One pass of conformity collapses (see the module docs) over the short edges with an end
-/// changed at or after pass `since`; returns the number applied.
-pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
+/// Whether the ball of `v` is unchanged since pass `since`.
+fn unchanged(ctx: &Ctx<'_>, v: u32, since: u32) -> bool {
+    ctx.stamp.get(v as usize).is_some_and(|&s| s < since)
+}
+
+/// The short edges of one kind of conformity pass, shortest first (ties by end points): every
+/// edge shorter than `l_min`, found around the vertices changed since pass `since` (`rings`:
+/// and their neighbours) plus those of `refused` (the edges the same pass refused in the
+/// previous round) whose surroundings are unchanged. A refused edge whose surroundings are
+/// still unchanged when its turn comes is refused again without a look: a collapse depends
+/// only on the balls of the edge's ends, a removal only on the balls of its shell's vertices.
+fn candidates(
+    ctx: &Ctx<'_>,
+    since: u32,
+    rings: bool,
+    refused: &[(u64, u32, u32)],
+) -> Vec<(u64, u32, u32)> {
+    let changed = changed_since(ctx, since, rings);
+    let mut list = Vec::new();
+    short_edges(ctx, &changed, &mut list);
+    list.extend(refused.iter().filter(|&&(_, a, b)| {
+        ctx.mesh.alive(a) && ctx.mesh.alive(b) && !changed[a as usize] && !changed[b as usize]
+    }));
+    list.sort_unstable();
+    list
+}
+
+/// One pass of conformity collapses (see the module docs) over the short edges; `refused`
+/// holds the edges the pass refused in the previous round (started at pass `since`) and
+/// receives those it refuses now. Returns the number applied.
+pub(crate) fn collapse_pass(
+    ctx: &mut Ctx<'_>,
+    since: u32,
+    refused: &mut Vec<(u64, u32, u32)>,
+) -> usize {
     ctx.next_pass();
-    let short = short_edges(ctx, since);
+    let short = candidates(ctx, since, false, refused);
+    refused.clear();
     let mut count = 0;
-    for (_, a, b) in short {
+    for e @ (_, a, b) in short {
         if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || ctx.length(a, b) >= ctx.l_min {
             continue;
         }
+        if unchanged(ctx, a, since) && unchanged(ctx, b, since) {
+            refused.push(e);
+            continue;
+        }
         let Some(mg) = super::merge::best_merge(ctx, a, b) else {
+            refused.push(e);
             continue;
         };
         let floor = ctx.ball_quality(a).min(ctx.ball_quality(b)).min(Q_KEEP);
         if mg.q >= floor {
             super::merge::apply(ctx, mg);
             count += 1;
+        } else {
+            refused.push(e);
         }
     }
     count
@@ -126,18 +174,30 @@ pub(crate) fn collapse_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
 /// edges are all in `[l_min, l_max]` and whose worst quality is at least the old shell's worst
 /// or [`Q_KEEP`]. Each removal takes one short edge away and adds none, and no vertex goes:
 /// the counterpart of a collapse where the collapse would make a long edge or a poor
-/// tetrahedron. Only edges with an end changed at or after pass `since` are examined.
-/// Returns the number of removals.
-pub(crate) fn short_edge_removal_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
+/// tetrahedron. `since` and `refused` as for [`collapse_pass`]. Returns the number of removals.
+pub(crate) fn short_edge_removal_pass(
+    ctx: &mut Ctx<'_>,
+    since: u32,
+    refused: &mut Vec<(u64, u32, u32)>,
+) -> usize {
     ctx.next_pass();
-    let short = short_edges(ctx, since);
+    let short = candidates(ctx, since, true, refused);
+    refused.clear();
     let mut count = 0;
     let mut shell = Vec::new();
-    for (_, a, b) in short {
+    for e @ (_, a, b) in short {
         if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || !ctx.mesh.is_edge(a, b) {
             continue;
         }
         ctx.mesh.shell(a, b, &mut shell);
+        let same = shell.iter().all(|&t| {
+            let tet = ctx.mesh.tets[t as usize];
+            tet.iter().all(|&v| unchanged(ctx, v, since))
+        });
+        if same {
+            refused.push(e);
+            continue;
+        }
         let q0 = shell
             .iter()
             .map(|&t| ctx.tet_quality(t))
@@ -151,6 +211,7 @@ pub(crate) fn short_edge_removal_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
             |t| c.quality_of(t, None),
             |x, y| (c.l_min..=c.l_max).contains(&c.length(x, y)),
         ) else {
+            refused.push(e);
             continue;
         };
         if q >= floor {
@@ -158,6 +219,8 @@ pub(crate) fn short_edge_removal_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
             ctx.touch_ball(b);
             ctx.mesh.replace_shell(a, b, &tets);
             count += 1;
+        } else {
+            refused.push(e);
         }
     }
     count
@@ -188,7 +251,9 @@ pub(crate) fn length_smooth_pass(ctx: &mut Ctx<'_>, since: u32) -> usize {
     let mut nb = Vec::new();
     let mut count = 0;
     for v in 0..ctx.mesh.points.len() as u32 {
-        if !ctx.mesh.alive(v) || !changed_since(ctx, v, since) {
+        // A vertex whose ball is unchanged since the previous round was not moved then and
+        // would not be now.
+        if !ctx.mesh.alive(v) || unchanged(ctx, v, since) {
             continue;
         }
         let normal = match ctx.mesh.vertex_kind(v) {
@@ -265,12 +330,13 @@ pub(crate) fn polish(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptRepo
     let mut share = in_range_share(ctx);
     // Each round examines what changed since the previous one began (everything at first).
     let mut since = 0;
+    let (mut refused_collapses, mut refused_removals) = (Vec::new(), Vec::new());
     for _ in 0..ROUNDS {
         let round = ctx.pass + 1;
         let nc = record(ctx, PassKind::Collapse, opts, rep, |c| {
-            collapse_pass(c, since)
+            collapse_pass(c, since, &mut refused_collapses)
         })? + record(ctx, PassKind::Flip, opts, rep, |c| {
-            short_edge_removal_pass(c, since)
+            short_edge_removal_pass(c, since, &mut refused_removals)
         })?;
         let ns = record(ctx, PassKind::Split, opts, rep, super::split::pass)?;
         record(ctx, PassKind::Flip, opts, rep, super::swap::pass)?;
