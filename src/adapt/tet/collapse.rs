@@ -51,6 +51,13 @@ impl Operator<Ctx<'_>> for Collapse {
         if ctx.length(a, b) >= ctx.l_min {
             return None;
         }
+        // The cheapest test first: no new edge longer than `l_max`.
+        let mut nb = Vec::new();
+        ctx.mesh.vertex_neighbours(a, &mut nb);
+        let lim = ctx.l_max;
+        if nb.iter().any(|&c| c != b && ctx.length(b, c) > lim) {
+            return None;
+        }
         let new = ctx.mesh.collapse_check(a, b)?;
         let before = ctx.ball_quality(a);
         let floor = ctx.q_min.min(before);
@@ -58,12 +65,6 @@ impl Operator<Ctx<'_>> for Collapse {
             if ctx.quality_of(t, None) < floor {
                 return None;
             }
-        }
-        let mut nb = Vec::new();
-        ctx.mesh.vertex_neighbours(a, &mut nb);
-        let lim = ctx.l_max;
-        if nb.iter().any(|&c| c != b && ctx.length(b, c) > lim) {
-            return None;
         }
         Some((a, b))
     }
