@@ -13,6 +13,7 @@
 
 use super::band::{Band, GridCoord};
 use super::lattice::{Lattice, C3};
+use super::nbhd::{neighbourhoods, Nbhd};
 use super::surface::closest_on_triangle;
 pub use super::zero_level::zero_level_integral;
 pub(crate) use super::zero_level::{level, Level};
@@ -33,20 +34,25 @@ pub enum Keep {
     OldBand,
 }
 
-/// A triangle of the zero level with cheap lower bounds of the distance to it: its
-/// circumscribing ball about the centroid and its plane.
+/// The triangles of the zero level with cheap lower bounds of the distance to each: its
+/// circumscribing ball about the centroid and its plane (one cache line per triangle, apart from
+/// the corners, so that a rejected candidate costs one load).
+struct Tris<'a> {
+    corners: &'a [[DVec3; 3]],
+    bounds: Vec<Bound>,
+}
+
 #[derive(Clone, Copy)]
-struct Tri {
-    corners: [DVec3; 3],
+#[repr(C, align(64))]
+struct Bound {
     centre: DVec3,
     radius: f64,
     normal: DVec3,
     offset: f64,
 }
 
-impl Tri {
-    fn new(corners: [DVec3; 3]) -> Tri {
-        let [a, b, c] = corners;
+impl Bound {
+    fn new([a, b, c]: [DVec3; 3]) -> Bound {
         let centre = (a + b + c) / 3.0;
         let radius = [a, b, c]
             .iter()
@@ -56,101 +62,62 @@ impl Tri {
         let len = n.length();
         let normal = if len > 0.0 { n / len } else { DVec3::ZERO };
         // Rounding slack, so the bound never exceeds the distance computed from the vertices.
-        Tri {
-            corners,
+        Bound {
             centre,
             radius: radius * (1.0 + 1e-9),
             normal,
             offset: normal.dot(a),
         }
     }
+}
 
-    /// Whether a lower bound of the distance of `p` to the triangle exceeds `lim`.
-    #[inline]
-    fn beyond(&self, p: DVec3, lim: f64) -> bool {
-        if (self.normal.dot(p) - self.offset).abs() * (1.0 - 1e-9) > lim {
-            return true;
-        }
-        let r = lim + self.radius;
-        (p - self.centre).length_squared() > r * r
+impl<'a> Tris<'a> {
+    fn new(corners: &'a [[DVec3; 3]]) -> Tris<'a> {
+        let bounds = corners.par_iter().map(|&t| Bound::new(t)).collect();
+        Tris { corners, bounds }
     }
 
-    /// The closest point of the triangle to `p`.
+    /// Whether a lower bound of the distance of `p` to triangle `t` exceeds `lim`.
     #[inline]
-    fn closest(&self, p: DVec3) -> DVec3 {
-        let [a, b, c] = self.corners;
+    fn beyond(&self, t: u32, p: DVec3, lim: f64) -> bool {
+        let b = &self.bounds[t as usize];
+        if (b.normal.dot(p) - b.offset).abs() * (1.0 - 1e-9) > lim {
+            return true;
+        }
+        let r = lim + b.radius;
+        (p - b.centre).length_squared() > r * r
+    }
+
+    /// The closest point of triangle `t` to `p`.
+    #[inline]
+    fn closest(&self, t: u32, p: DVec3) -> DVec3 {
+        let [a, b, c] = self.corners[t as usize];
         closest_on_triangle(p, a, b, c)
     }
 
-    /// The distance of `p` to the triangle.
+    /// The distance of `p` to triangle `t`.
     #[inline]
-    fn distance(&self, p: DVec3) -> f64 {
-        (p - self.closest(p)).length()
+    fn distance(&self, t: u32, p: DVec3) -> f64 {
+        (p - self.closest(t, p)).length()
     }
 
-    /// `|cos|` of the angle between the offset of `p` from the triangle and its normal.
-    fn cos(&self, p: DVec3) -> f64 {
-        let d = p - self.closest(p);
+    /// `|cos|` of the angle between the offset of `p` from triangle `t` and its normal.
+    fn cos(&self, t: u32, p: DVec3) -> f64 {
+        let d = p - self.closest(t, p);
         let len = d.length();
-        if len > 0.0 && self.normal != DVec3::ZERO {
-            (d.dot(self.normal) / len).abs()
+        let normal = self.bounds[t as usize].normal;
+        if len > 0.0 && normal != DVec3::ZERO {
+            (d.dot(normal) / len).abs()
         } else {
             0.0
         }
     }
 }
 
-/// Calls `f(i, nbrs)` for every node `i` of the sorted coordinates `coords` (in parallel chunks)
-/// with the indices of its `3³` neighbours (`NONE` where absent), found by one forward cursor per
-/// neighbouring column.
-fn neighbourhoods<T: Send>(coords: &[C3], f: impl Fn(usize, &[u32; 27]) -> T + Sync) -> Vec<T> {
-    const CHUNK: usize = 1 << 14;
-    let chunks: Vec<usize> = (0..coords.len()).step_by(CHUNK).collect();
-    let parts: Vec<Vec<T>> = chunks
-        .par_iter()
-        .map(|&start| {
-            let end = (start + CHUNK).min(coords.len());
-            let first = coords[start];
-            let mut cur = [0usize; 9];
-            for (k, cur) in cur.iter_mut().enumerate() {
-                let t = [
-                    first[0] + (k % 3) as i32 - 1,
-                    first[1] + (k / 3) as i32 - 1,
-                    first[2] - 1,
-                ];
-                *cur = coords.partition_point(|c| *c < t);
-            }
-            let mut out = Vec::with_capacity(end - start);
-            let mut nb = [NONE; 27];
-            for (i, &c) in coords.iter().enumerate().take(end).skip(start) {
-                for (k, cur) in cur.iter_mut().enumerate() {
-                    let (x, y) = (c[0] + (k % 3) as i32 - 1, c[1] + (k / 3) as i32 - 1);
-                    let t0 = [x, y, c[2] - 1];
-                    while *cur < coords.len() && coords[*cur] < t0 {
-                        *cur += 1;
-                    }
-                    let mut q = *cur;
-                    for dz in 0..3 {
-                        let t = [x, y, c[2] + dz as i32 - 1];
-                        while q < coords.len() && coords[q] < t {
-                            q += 1;
-                        }
-                        let hit = q < coords.len() && coords[q] == t;
-                        nb[dz * 9 + k] = if hit { q as u32 } else { NONE };
-                    }
-                }
-                out.push(f(i, &nb));
-            }
-            out
-        })
-        .collect();
-    parts.into_iter().flatten().collect()
-}
-
 /// The nearest to `p` of the current best `(bd, bt)` and the triangles `cands` (repeats and
 /// `NONE` skipped): ties within `tie` go to the triangle facing `p` most, then the lowest index.
 fn nearest(
-    tris: &[Tri],
+    tris: &Tris,
     p: DVec3,
     (mut bd, mut bt): (f64, u32),
     tie: f64,
@@ -158,28 +125,30 @@ fn nearest(
 ) -> (f64, u32) {
     // `|cos|` of the best triangle, computed when a tie needs it.
     let mut bcos = f64::NAN;
-    let mut seen = [NONE; 27];
-    let mut ns = 0;
+    // The candidates seen, with a one-word filter (bit `t mod 64`) in front of the list.
+    let (mut seen, mut ns, mut filter) = ([NONE; 27], 0, 0u64);
     for t in cands {
-        if t == NONE || t == bt || seen[..ns].contains(&t) {
+        if t == NONE || t == bt {
             continue;
         }
-        if ns < seen.len() {
-            seen[ns] = t;
-            ns += 1;
-        }
-        let tr = &tris[t as usize];
-        if tr.beyond(p, bd + tie) {
+        let bit = 1u64 << (t % 64);
+        if filter & bit != 0 && seen[..ns].contains(&t) {
             continue;
         }
-        let d = tr.distance(p);
+        filter |= bit;
+        seen[ns] = t;
+        ns += 1;
+        if tris.beyond(t, p, bd + tie) {
+            continue;
+        }
+        let d = tris.distance(t, p);
         if d < bd - tie {
             (bd, bt, bcos) = (d, t, f64::NAN);
         } else if (d - bd).abs() <= tie {
             if bcos.is_nan() {
-                bcos = tris[bt as usize].cos(p);
+                bcos = tris.cos(bt, p);
             }
-            let cos = tr.cos(p);
+            let cos = tris.cos(t, p);
             if cos > bcos || (cos == bcos && t < bt) {
                 (bd, bt, bcos) = (d, t, cos);
             }
@@ -199,8 +168,8 @@ fn nearest(
 /// measured only when its lower bound can beat the best so far (the node's own triangle, whose
 /// distance is known, bounds the search from the start).
 fn propagate(
-    tris: &[Tri],
-    nbr: &[[u32; 27]],
+    tris: &Tris,
+    nbr: &[Nbhd],
     pos: &(impl Fn(usize) -> DVec3 + Sync),
     layers: usize,
     tie: f64,
@@ -211,32 +180,33 @@ fn propagate(
     let mut mark = vec![false; nbr.len()];
     // The pass in which a node's triangle last changed (0: a seed's, or none).
     let mut stamp = vec![0u32; nbr.len()];
+    // Per visited node its nearest triangle this pass (one buffer for all passes).
+    let mut found: Vec<(f64, u32)> = Vec::new();
     for pass in 1..=layers as u32 {
         let (b, s, dd) = (&*best, &stamp, &*dist);
-        let res: Vec<Option<(f64, u32)>> = visit
+        visit
             .par_iter()
             .map(|&i| {
                 let i = i as usize;
                 let fresh = nbr[i]
                     .iter()
-                    .filter(|&&j| j != NONE && (pass == 1 || s[j as usize] == pass - 1))
-                    .map(|&j| b[j as usize]);
-                let (d, t) = nearest(tris, pos(i), (dd[i], b[i]), tie, fresh);
-                (t != b[i]).then_some((d, t))
+                    .filter(|&j| pass == 1 || s[j as usize] == pass - 1)
+                    .map(|j| b[j as usize]);
+                nearest(tris, pos(i), (dd[i], b[i]), tie, fresh)
             })
-            .collect();
+            .collect_into_vec(&mut found);
         let mut changed = false;
-        for (&i, r) in visit.iter().zip(res) {
-            let Some((d, t)) = r else { continue };
+        for (&i, &(d, t)) in visit.iter().zip(&found) {
             let i = i as usize;
+            if t == best[i] {
+                continue;
+            }
             changed = true;
             best[i] = t;
             dist[i] = d;
             stamp[i] = pass;
-            for &j in &nbr[i] {
-                if j != NONE {
-                    mark[j as usize] = true;
-                }
+            for j in nbr[i].iter() {
+                mark[j as usize] = true;
             }
         }
         if !changed {
@@ -290,7 +260,7 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
         }
     }
     // Seeds: the corners of the crossed cells take the nearest triangle of their cells.
-    let tris: Vec<Tri> = l.tris.par_iter().map(|&t| Tri::new(t)).collect();
+    let tris = Tris::new(&l.tris);
     let mut best = vec![NONE; coords.len()];
     let mut dist = vec![f64::INFINITY; coords.len()];
     let mut seed = vec![false; coords.len()];
@@ -314,20 +284,20 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
             let i = *cur;
             seed[i] = true;
             let p = lat.pos(q);
-            for (t, tr) in tris.iter().enumerate().take(tri).skip(start) {
-                if tr.beyond(p, dist[i]) {
+            for t in start as u32..tri as u32 {
+                if tris.beyond(t, p, dist[i]) {
                     continue;
                 }
-                let d = tr.distance(p);
+                let d = tris.distance(t, p);
                 if d < dist[i] {
                     dist[i] = d;
-                    best[i] = t as u32;
+                    best[i] = t;
                 }
             }
         }
     }
     // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes).
-    let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
+    let nbr = neighbourhoods(&coords);
     let layers = (max_dist / lat.h).ceil() as usize + 1;
     propagate(
         &tris,
@@ -345,9 +315,8 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
             NONE => (f64::INFINITY, 1.0),
             t => {
                 let p = lat.pos(coords[i]);
-                let tr = &tris[t as usize];
-                let q = tr.closest(p);
-                let [a, b, c] = tr.corners;
+                let q = tris.closest(t, p);
+                let [a, b, c] = l.tris[t as usize];
                 let s = (p - q).dot((b - a).cross(c - a));
                 let d = (p - l.project(lat, t, q)).length();
                 (d, if s < 0.0 { -1.0 } else { 1.0 })
@@ -366,13 +335,12 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
         (0..coords.len())
             .into_par_iter()
             .map(|i| {
-                let nb = &nbr[i];
                 if !seed[i] {
                     return 1.0;
                 }
                 let (mut n, mut sx, mut sd, mut sxx, mut sxd) = (0.0f64, 0.0, 0.0, 0.0, 0.0);
-                for &k in nb.iter() {
-                    if k == NONE || !seed[k as usize] {
+                for k in nbr[i].iter() {
+                    if !seed[k as usize] {
                         continue;
                     }
                     if let Some(x) = old[k as usize] {
@@ -436,9 +404,9 @@ mod tests {
         let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, 2).unwrap();
         let phi: Vec<f64> = nb.band.coords().map(|c| f(lat.pos(c))).collect();
         let l = level(&lat, &nb.band, &phi);
-        let tris: Vec<Tri> = l.tris.iter().map(|&t| Tri::new(t)).collect();
+        let tris = Tris::new(&l.tris);
         let coords: Vec<C3> = nb.band.coords().collect();
-        let nbr: Vec<[u32; 27]> = neighbourhoods(&coords, |_, nb| *nb);
+        let nbr = neighbourhoods(&coords);
         let pos = |i: usize| lat.pos(coords[i]);
         let tie = 1e-12 * lat.h;
         let n = coords.len();
@@ -446,18 +414,15 @@ mod tests {
             let mut best = vec![NONE; n];
             let mut dist = vec![f64::INFINITY; n];
             for i in (0..n).step_by(5) {
-                best[i] = ((i * 7919) % tris.len()) as u32;
-                dist[i] = tris[best[i] as usize].distance(pos(i));
+                best[i] = ((i * 7919) % l.tris.len()) as u32;
+                dist[i] = tris.distance(best[i], pos(i));
             }
             let (mut rb, mut rd) = (best.clone(), dist.clone());
             propagate(&tris, &nbr, &pos, layers, tie, &mut best, &mut dist);
             for _ in 0..layers {
                 let new: Vec<(f64, u32)> = (0..n)
                     .map(|i| {
-                        let all = nbr[i]
-                            .iter()
-                            .filter(|&&j| j != NONE)
-                            .map(|&j| rb[j as usize]);
+                        let all = nbr[i].iter().map(|j| rb[j as usize]);
                         nearest(&tris, pos(i), (rd[i], rb[i]), tie, all)
                     })
                     .collect();

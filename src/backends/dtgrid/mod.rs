@@ -21,6 +21,7 @@ pub mod grid;
 pub mod heat;
 pub mod lattice;
 pub mod mcf;
+mod nbhd;
 pub mod probe;
 pub mod scheme;
 pub mod shape_heat;
