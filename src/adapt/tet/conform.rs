@@ -133,6 +133,40 @@ fn candidates(
     list
 }
 
+/// What became of one short edge in a pass of [`over_short_edges`].
+enum Outcome {
+    /// Nothing to do any more (gone, or no longer short).
+    Gone,
+    /// Refused: tried again in the next round only if something near it changes.
+    Refused,
+    /// Applied.
+    Applied,
+}
+
+/// One pass over the short edges of [`candidates`] (changed since pass `since`, or refused in
+/// the previous round), shortest first, each given to `attempt`; `refused` receives the edges
+/// refused now. Returns the number applied.
+fn over_short_edges(
+    ctx: &mut Ctx<'_>,
+    since: u32,
+    rings: bool,
+    refused: &mut Vec<(u64, u32, u32)>,
+    mut attempt: impl FnMut(&mut Ctx<'_>, u32, u32) -> Outcome,
+) -> usize {
+    ctx.next_pass();
+    let short = candidates(ctx, since, rings, refused);
+    refused.clear();
+    let mut count = 0;
+    for e @ (_, a, b) in short {
+        match attempt(ctx, a, b) {
+            Outcome::Gone => {}
+            Outcome::Refused => refused.push(e),
+            Outcome::Applied => count += 1,
+        }
+    }
+    count
+}
+
 /// One pass of conformity collapses (see the module docs) over the short edges; `refused`
 /// holds the edges the pass refused in the previous round (started at pass `since`) and
 /// receives those it refuses now. Returns the number applied.
@@ -141,31 +175,24 @@ pub(crate) fn collapse_pass(
     since: u32,
     refused: &mut Vec<(u64, u32, u32)>,
 ) -> usize {
-    ctx.next_pass();
-    let short = candidates(ctx, since, false, refused);
-    refused.clear();
-    let mut count = 0;
-    for e @ (_, a, b) in short {
+    over_short_edges(ctx, since, false, refused, |ctx, a, b| {
         if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || ctx.length(a, b) >= ctx.l_min {
-            continue;
+            return Outcome::Gone;
         }
         if unchanged(ctx, a, since) && unchanged(ctx, b, since) {
-            refused.push(e);
-            continue;
+            return Outcome::Refused;
         }
         let Some(mg) = super::merge::best_merge(ctx, a, b) else {
-            refused.push(e);
-            continue;
+            return Outcome::Refused;
         };
         let floor = ctx.ball_quality(a).min(ctx.ball_quality(b)).min(Q_KEEP);
         if mg.q >= floor {
             super::merge::apply(ctx, mg);
-            count += 1;
+            Outcome::Applied
         } else {
-            refused.push(e);
+            Outcome::Refused
         }
-    }
-    count
+    })
 }
 
 /// One pass of *short-edge removals*: every interior edge still shorter than `l_min` after
@@ -180,14 +207,10 @@ pub(crate) fn short_edge_removal_pass(
     since: u32,
     refused: &mut Vec<(u64, u32, u32)>,
 ) -> usize {
-    ctx.next_pass();
-    let short = candidates(ctx, since, true, refused);
-    refused.clear();
-    let mut count = 0;
     let mut shell = Vec::new();
-    for e @ (_, a, b) in short {
+    over_short_edges(ctx, since, true, refused, |ctx, a, b| {
         if !ctx.mesh.alive(a) || !ctx.mesh.alive(b) || !ctx.mesh.is_edge(a, b) {
-            continue;
+            return Outcome::Gone;
         }
         ctx.mesh.shell(a, b, &mut shell);
         let same = shell.iter().all(|&t| {
@@ -195,8 +218,7 @@ pub(crate) fn short_edge_removal_pass(
             tet.iter().all(|&v| unchanged(ctx, v, since))
         });
         if same {
-            refused.push(e);
-            continue;
+            return Outcome::Refused;
         }
         let q0 = shell
             .iter()
@@ -211,19 +233,17 @@ pub(crate) fn short_edge_removal_pass(
             |t| c.quality_of(t, None),
             |x, y| (c.l_min..=c.l_max).contains(&c.length(x, y)),
         ) else {
-            refused.push(e);
-            continue;
+            return Outcome::Refused;
         };
         if q >= floor {
             ctx.touch_ball(a);
             ctx.touch_ball(b);
             ctx.mesh.replace_shell(a, b, &tets);
-            count += 1;
+            Outcome::Applied
         } else {
-            refused.push(e);
+            Outcome::Refused
         }
-    }
-    count
+    })
 }
 
 /// `Σ ln² l` over the edges from a vertex at `p` with metric `m` to its neighbours `nb`, and

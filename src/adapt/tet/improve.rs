@@ -50,10 +50,8 @@ fn rating(ctx: &Ctx<'_>, t: [u32; 4], moved: Option<(u32, DVec3, &Sym3)>) -> f64
     q.min(crate::metric::conformity::mean_ratio(pts, &big))
 }
 
-/// The worst rating of the ball of `v` with `v` at `p` with metric `m`, or `None` as soon as
-/// one rating is at most `floor`. The tetrahedron at `first` in the ball (the last one to
-/// fail or the worst) is rated first, as it is the likeliest to fail again; `first` is left
-/// at the one that failed or the worst.
+/// The worst [`rating`] of the ball of `v` with `v` at `p` with metric `m`, or `None` as soon
+/// as one is at most `floor` ([`Ctx::ball_min_above`]).
 fn ball_rating_above(
     ctx: &Ctx<'_>,
     v: u32,
@@ -62,21 +60,7 @@ fn ball_rating_above(
     floor: f64,
     first: &mut usize,
 ) -> Option<f64> {
-    let ball = &ctx.mesh.ball[v as usize];
-    let n = ball.len();
-    let (mut q, mut worst) = (f64::INFINITY, *first);
-    for k in (0..n).map(|k| (k + *first) % n) {
-        let x = rating(ctx, ctx.mesh.tets[ball[k] as usize], Some((v, p, m)));
-        if x <= floor {
-            *first = k;
-            return None;
-        }
-        if x < q {
-            (q, worst) = (x, k);
-        }
-    }
-    *first = worst;
-    Some(q)
+    ctx.ball_min_above(v, floor, first, |t| rating(ctx, t, Some((v, p, m))))
 }
 
 /// Compass search on the worst quality of the ball of `v` (see the module docs); returns

@@ -219,29 +219,32 @@ impl<'a> Ctx<'a> {
         q
     }
 
-    /// The worst quality of the ball of `v` with `v` at `p` with metric `m`, or `None` as
-    /// soon as one of its tetrahedra is at most `floor` (most trial positions fail early). The
-    /// tetrahedron at `first` in the ball (the worst, or the last to fail) is tried first;
-    /// `first` is left at the one that failed.
-    pub fn ball_quality_above(
+    /// The worst `rate` of the tetrahedra of the ball of `v`, or `None` as soon as one is at
+    /// most `floor` (most trial positions fail early). The tetrahedron at `first` in the ball
+    /// (the last one to fail, or the worst) is rated first, as it is the likeliest to fail
+    /// again; `first` is left at the one that failed or the worst. The answer does not depend
+    /// on `first`, only the time does.
+    pub fn ball_min_above(
         &self,
         v: u32,
-        p: DVec3,
-        m: &Sym3,
         floor: f64,
         first: &mut usize,
+        rate: impl Fn([u32; 4]) -> f64,
     ) -> Option<f64> {
         let ball = &self.mesh.ball[v as usize];
         let n = ball.len();
-        let mut q = f64::INFINITY;
+        let (mut q, mut worst) = (f64::INFINITY, *first);
         for k in (0..n).map(|k| (k + *first) % n) {
-            let x = self.quality_of(self.mesh.tets[ball[k] as usize], Some((v, p, m)));
+            let x = rate(self.mesh.tets[ball[k] as usize]);
             if x <= floor {
                 *first = k;
                 return None;
             }
-            q = q.min(x);
+            if x < q {
+                (q, worst) = (x, k);
+            }
         }
+        *first = worst;
         Some(q)
     }
 

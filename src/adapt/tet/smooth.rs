@@ -70,7 +70,9 @@ impl Operator<Ctx<'_>> for Smooth {
                 None => ctx.metric[v as usize],
             };
             let better = ctx
-                .ball_quality_above(v, np, &m, q0 * GAIN, &mut first)
+                .ball_min_above(v, q0 * GAIN, &mut first, |t| {
+                    ctx.quality_of(t, Some((v, np, &m)))
+                })
                 .is_some();
             if better && ctx.mesh.move_valid(v, np) {
                 return Some((v, np, m));
