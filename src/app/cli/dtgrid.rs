@@ -155,6 +155,7 @@ fn table_grids(quick: bool, max_n: usize) -> Result<Vec<usize>> {
 
 /// Runs a `dtgrid` subcommand.
 pub fn run(cmd: DtGrid) -> Result<()> {
+    anisomesh::backends::dtgrid::mcf::keep_freed_memory();
     match cmd {
         DtGrid::Texture(a) => super::dtgrid_obj::texture(a),
         DtGrid::ObjMcf(a) => super::dtgrid_obj::obj_mcf(a),
@@ -231,8 +232,8 @@ pub fn run(cmd: DtGrid) -> Result<()> {
                     30.199
                 );
                 println!(
-                    "CSR product (M + tau L) x on one core: {} entries, {:.3e} band nodes/s, \
-                     {:.2} GB/s moved (row pointers, columns, values, x, y)",
+                    "CSR product (M + tau L) x on one core: {} entries, {:.3e} band nodes per cpu \
+                     s, {:.2} GB/s moved (row pointers, columns, values, x, y)",
                     r.nnz,
                     r.matvec_rate,
                     r.matvec_bandwidth * 1e-9

@@ -41,6 +41,7 @@ impl Lattice {
     }
 
     /// The position of node `c` (coordinate 0 along x).
+    #[inline]
     pub fn pos(&self, c: C3) -> DVec3 {
         DVec3::new(
             self.lo + self.h * c[0] as f64,

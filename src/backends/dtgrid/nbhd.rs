@@ -9,31 +9,24 @@
 use super::lattice::C3;
 use rayon::prelude::*;
 
-/// Slot `dz · 9 + k` of a neighbourhood is the offset `(k mod 3 − 1, k div 3 − 1, dz − 1)`.
-const COLUMN: [u32; 9] = {
-    let mut c = [0u32; 9];
-    let mut k = 0;
-    while k < 9 {
-        c[k] = (1 << k) | (1 << (9 + k)) | (1 << (18 + k));
-        k += 1;
-    }
-    c
-};
-
 /// The neighbours of one node (itself included) in the band.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Nbhd {
     /// Per column `k`: the first index at or above `(x + dx, y + dy, z − 1)`.
     base: [u32; 9],
-    /// Bit `dz · 9 + k`: the neighbour at that slot is a band node.
+    /// Bit `dz · 9 + k`: the neighbour at offset `(k mod 3 − 1, k div 3 − 1, dz − 1)` is a band
+    /// node.
     mask: u32,
 }
 
 impl Nbhd {
     /// The indices of the neighbours present, in slot order (`z` slowest, then `y`, then `x`).
+    /// A column's slots come in increasing `dz`, so each column keeps the index of its next
+    /// present neighbour (no population count per neighbour).
     #[inline]
     pub(super) fn iter(&self) -> impl Iterator<Item = u32> + '_ {
         let mut m = self.mask;
+        let mut next = self.base;
         std::iter::from_fn(move || {
             if m == 0 {
                 return None;
@@ -41,8 +34,9 @@ impl Nbhd {
             let slot = m.trailing_zeros();
             m &= m - 1;
             let k = (slot % 9) as usize;
-            let below = self.mask & COLUMN[k] & ((1u32 << slot) - 1);
-            Some(self.base[k] + below.count_ones())
+            let i = next[k];
+            next[k] += 1;
+            Some(i)
         })
     }
 }

@@ -205,57 +205,58 @@ pub fn assemble_scaled(
         row_ptr.push(nnz);
     }
     let pos = |i: usize, c: u32| row_ptr[i] + (mask[i] & ((1u32 << c) - 1)).count_ones() as usize;
-    // Values and columns, one row range per task, elements in storage order.
-    let parts: Vec<(Vec<f64>, Vec<u32>, Vec<f64>)> = rows
-        .par_iter()
-        .map(|&(lo, hi)| {
-            let (base, top) = (row_ptr[lo], row_ptr[hi]);
-            let mut val = vec![0.0; top - base];
-            let mut col = vec![0u32; top - base];
-            let mut mass = vec![0.0; hi - lo];
-            for i in lo..hi {
-                col[pos(i, 13) - base] = i as u32;
-            }
-            let (f, l) = touching(elems, lo, hi);
-            let mut ke = [0.0; 64];
-            for e in &elems[f..l] {
-                let v: [f64; 8] = std::array::from_fn(|k| phi[e.1[k] as usize]);
-                match w {
-                    Weight::Mcf { eps } => kernel.mcf(eps, &v, &mut ke),
-                    Weight::Heat => element_stiffness(&q1, w, &v, h, &mut ke),
-                }
-                let mw = element_mass(w, &v, h);
-                for (a, &ia) in e.1.iter().enumerate() {
-                    let ia = ia as usize;
-                    if !(lo..hi).contains(&ia) {
-                        continue;
-                    }
-                    mass[ia - lo] += mw;
-                    // The row's start and pattern, loaded once for its eight couplings.
-                    let (start, m) = (row_ptr[ia] - base, mask[ia]);
-                    for (b, &ib) in e.1.iter().enumerate() {
-                        let p = start + (m & ((1u32 << CODE[a][b]) - 1)).count_ones() as usize;
-                        val[p] += tau * ke[a * 8 + b];
-                        col[p] = ib;
-                    }
-                }
-            }
-            if with_mass {
-                for i in lo..hi {
-                    val[pos(i, 13) - base] += mass[i - lo];
-                }
-            }
-            (val, col, mass)
-        })
-        .collect();
-    let mut val = Vec::with_capacity(nnz);
-    let mut col = Vec::with_capacity(nnz);
-    let mut mass = Vec::with_capacity(n);
-    for (v, c, m) in parts {
-        val.extend(v);
-        col.extend(c);
-        mass.extend(m);
+    // Values and columns, one row range per task, elements in storage order, written in place
+    // (each range owns its slice of the arrays: no per-range buffers to copy together).
+    let mut val = vec![0.0; nnz];
+    let mut col = vec![0u32; nnz];
+    let mut mass = vec![0.0; n];
+    let mut tasks = Vec::with_capacity(rows.len());
+    {
+        let (mut val, mut col, mut mass) = (&mut val[..], &mut col[..], &mut mass[..]);
+        for &(lo, hi) in &rows {
+            let len = row_ptr[hi] - row_ptr[lo];
+            let (v, rest_v) = std::mem::take(&mut val).split_at_mut(len);
+            let (c, rest_c) = std::mem::take(&mut col).split_at_mut(len);
+            let (m, rest_m) = std::mem::take(&mut mass).split_at_mut(hi - lo);
+            (val, col, mass) = (rest_v, rest_c, rest_m);
+            tasks.push((lo, hi, v, c, m));
+        }
     }
+    tasks.into_par_iter().for_each(|(lo, hi, val, col, mass)| {
+        let base = row_ptr[lo];
+        for i in lo..hi {
+            col[pos(i, 13) - base] = i as u32;
+        }
+        let (f, l) = touching(elems, lo, hi);
+        let mut ke = [0.0; 64];
+        for e in &elems[f..l] {
+            let v: [f64; 8] = std::array::from_fn(|k| phi[e.1[k] as usize]);
+            match w {
+                Weight::Mcf { eps } => kernel.mcf(eps, &v, &mut ke),
+                Weight::Heat => element_stiffness(&q1, w, &v, h, &mut ke),
+            }
+            let mw = element_mass(w, &v, h);
+            for (a, &ia) in e.1.iter().enumerate() {
+                let ia = ia as usize;
+                if !(lo..hi).contains(&ia) {
+                    continue;
+                }
+                mass[ia - lo] += mw;
+                // The row's start and pattern, loaded once for its eight couplings.
+                let (start, m) = (row_ptr[ia] - base, mask[ia]);
+                for (b, &ib) in e.1.iter().enumerate() {
+                    let p = start + (m & ((1u32 << CODE[a][b]) - 1)).count_ones() as usize;
+                    val[p] += tau * ke[a * 8 + b];
+                    col[p] = ib;
+                }
+            }
+        }
+        if with_mass {
+            for i in lo..hi {
+                val[pos(i, 13) - base] += mass[i - lo];
+            }
+        }
+    });
     Ok((
         mass,
         Csr {
