@@ -155,7 +155,7 @@ fn table_grids(quick: bool, max_n: usize) -> Result<Vec<usize>> {
 
 /// Runs a `dtgrid` subcommand.
 pub fn run(cmd: DtGrid) -> Result<()> {
-    anisomesh::backends::dtgrid::mcf::keep_freed_memory();
+    super::memory::keep_freed_memory();
     match cmd {
         DtGrid::Texture(a) => super::dtgrid_obj::texture(a),
         DtGrid::ObjMcf(a) => super::dtgrid_obj::obj_mcf(a),

@@ -19,6 +19,7 @@ mod flows;
 mod info;
 mod measure;
 mod measure_shape;
+mod memory;
 mod metric;
 mod metric_args;
 mod progress;

@@ -99,22 +99,6 @@ pub fn cpu_seconds() -> f64 {
     t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
 }
 
-/// Keeps the memory the process frees for its later allocations (glibc only; elsewhere
-/// nothing): no block is mapped on its own and the heap is not trimmed. A step allocates and
-/// frees band-sized buffers (the new band, its distances, the system matrix); mapped afresh
-/// each time, every page of them is faulted in and cleared by the kernel again (about a sixth
-/// of a step's processor time on 257³). With this, a later step reuses the pages of the earlier
-/// ones. The results do not change.
-pub fn keep_freed_memory() {
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    // SAFETY: mallopt only sets allocator parameters; it is called before the large buffers of a
-    // run exist and takes effect for later allocations.
-    unsafe {
-        libc::mallopt(libc::M_MMAP_MAX, 0);
-        libc::mallopt(libc::M_TRIM_THRESHOLD, libc::c_int::MAX);
-    }
-}
-
 /// What one step did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StepReport {
