@@ -6,8 +6,9 @@
 //!   the edge ([`linear_size_length`] of `ℓ_a = |e|_{M_a}`, `ℓ_b = |e|_{M_b}`; against an
 //!   integration of the analytic metric it is the most faithful of the vertex rules compared in
 //!   `tests/metric_length_rules.rs`) or, for an analytic metric, integrated along the edge
-//!   ([`conformity_analytic`]): share in `[1/√2, √2]`, min, max, mean and a histogram with
-//!   bounds [`LENGTH_BINS`] (powers of `√2`, so the unit interval is two bins).
+//!   ([`conformity_analytic`]), or by the rule of the UGAWG measures ([`conformity_ugawg`], to
+//!   compare with the study's published shares): share in `[1/√2, √2]`, min, max, mean and a
+//!   histogram with bounds [`LENGTH_BINS`] (powers of `√2`, so the unit interval is two bins).
 //! - **`Q_ani`** (004 §3.4) of each cell in its log-Euclidean element metric ([`q_ani`] in
 //!   [`element_metric`]): `1` for a regular simplex of unit edges, larger otherwise; mean, worst,
 //!   histogram with bounds [`Q_ANI_BINS`].
@@ -21,7 +22,7 @@
 
 use rayon::prelude::*;
 
-use super::length::{element_metric, linear_size_length, q_ani, Q_ANI_BINS};
+use super::length::{element_metric, linear_size_length, q_ani, ugawg_length, Q_ANI_BINS};
 use super::length::{L_MAX, L_MIN};
 use super::SymTensor;
 use crate::error::{Error, Result};
@@ -171,6 +172,30 @@ pub fn conformity<const D: usize, const N: usize, S: SymTensor<D>>(
             let (a, b) = (a as usize, b as usize);
             let e = points[b] - points[a];
             linear_size_length(metric[a].quad(e).sqrt(), metric[b].quad(e).sqrt())
+        })
+        .collect();
+    Ok(summarise(points, cells, metric, &lengths))
+}
+
+/// [`conformity`] with the edge lengths of the UGAWG measures ([`ugawg_length`] of the end
+/// metrics; the mean ratio is already theirs): the statistics by which the UGAWG study rated
+/// every adaptor, for comparing a mesh with its published shares. For an analytic field, pass
+/// the field evaluated at the vertices, as the study did.
+///
+/// Errors as [`conformity`].
+pub fn conformity_ugawg<const D: usize, const N: usize, S: SymTensor<D>>(
+    points: &[S::Vec],
+    cells: &[[u32; N]],
+    metric: &[S],
+) -> Result<Conformity> {
+    check_inputs(points.len(), cells, metric)?;
+    let edges = cell_edges(cells);
+    let lengths: Vec<f64> = edges
+        .par_iter()
+        .map(|&[a, b]| {
+            let (a, b) = (a as usize, b as usize);
+            let e = points[b] - points[a];
+            ugawg_length(metric[a].quad(e).sqrt(), metric[b].quad(e).sqrt())
         })
         .collect();
     Ok(summarise(points, cells, metric, &lengths))
@@ -340,5 +365,37 @@ mod tests {
         let inv = conformity(&p, &[[0, 2, 1]], &[Sym2::IDENTITY; 3]).unwrap();
         assert_eq!(inv.inverted, 1);
         assert_eq!(inv.mean_ratio_min, 0.0);
+    }
+
+    #[test]
+    fn ugawg_rule_is_the_log_mean_away_from_equal_ends() {
+        use crate::metric::length::{geometric_mean_length, ugawg_length};
+        // Ends far apart: (la - lb) / ln(la / lb).
+        let (la, lb) = (0.5f64, 2.0f64);
+        let want = (la - lb) / (la / lb).ln();
+        assert!((ugawg_length(la, lb) - want).abs() < 1e-15);
+        assert_eq!(ugawg_length(la, lb), geometric_mean_length(la, lb));
+        // Within Omega_h's tolerance: the arithmetic mean.
+        let (near_a, near_b) = (1.0f64, 1.0005f64);
+        assert_eq!(ugawg_length(near_a, near_b), 0.5 * (near_a + near_b));
+        assert_ne!(
+            ugawg_length(near_a, near_b),
+            geometric_mean_length(near_a, near_b)
+        );
+        // Graded edges: the log mean is longer than the linear-size rule of `conformity`.
+        let p = [
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(0.0, 1.0),
+        ];
+        let m = [Sym2::IDENTITY, Sym2::scalar(16.0), Sym2::IDENTITY];
+        let u = conformity_ugawg(&p, &[[0, 1, 2]], &m).unwrap();
+        let l = conformity(&p, &[[0, 1, 2]], &m).unwrap();
+        // The longest edge, 1-2: la = 4√2, lb = √2, log mean 3√2 / ln 4 = 3.06, linear size
+        // 8 ln 4 / (3√2) = 2.61.
+        let r2 = 2f64.sqrt();
+        assert!((u.edge_length_max - 3.0 * r2 / 4f64.ln()).abs() < 1e-12);
+        assert!((l.edge_length_max - 8.0 * 4f64.ln() / (3.0 * r2)).abs() < 1e-12);
+        assert_eq!(u.mean_ratio_min, l.mean_ratio_min);
     }
 }

@@ -69,6 +69,22 @@ pub fn geometric_mean_length(la: f64, lb: f64) -> f64 {
     lo * x / x.ln_1p()
 }
 
+/// The edge length of the UGAWG measures (the `MEASURES.md` of the UGAWG adapt-benchmarks, the
+/// rule by which the UGAWG study rated every adaptor): the geometric-density length
+/// [`geometric_mean_length`] when `|la - lb| > 1e-3`, the arithmetic mean of `la`, `lb`
+/// otherwise (Omega_h's tolerance). Use it to compare a mesh with the study's published shares.
+#[inline]
+pub fn ugawg_length(la: f64, lb: f64) -> f64 {
+    if (la - lb).abs() > UGAWG_LENGTH_EPS {
+        geometric_mean_length(la, lb)
+    } else {
+        0.5 * (la + lb)
+    }
+}
+
+/// The tolerance on `|la - lb|` below which [`ugawg_length`] takes the arithmetic mean.
+pub const UGAWG_LENGTH_EPS: f64 = 1e-3;
+
 /// `∫_0^1 dt / ((1-t)/la + t/lb) = la lb ln(la/lb) / (la - lb)`: the edge length when the size
 /// along the edge, `1/ℓ(t)`, varies linearly between the ends (as mmg interpolates sizes between
 /// vertices, and as eq. (6)'s sizes grow with the distance outside the band). Between the

@@ -37,7 +37,7 @@ pub mod tensor;
 pub mod ugawg;
 
 pub use complexity::{complexity, predicted_vertices};
-pub use conformity::{conformity, conformity_analytic, Conformity};
+pub use conformity::{conformity, conformity_analytic, conformity_ugawg, Conformity};
 pub use field::validate_field;
 pub use from_hessian::{interpolation_error_metric_iso, lp_metric, multiscale_lp, LpReport};
 pub use gradation::{gradate, gradate_graph, gradate_tets};

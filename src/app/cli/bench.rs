@@ -140,13 +140,21 @@ pub fn run(b: Bench) -> Result<()> {
 
 fn tet(a: TetArgs) -> Result<()> {
     println!(
-        "{:<10} {:>9} {:>9} {:>9} {:>9} {:>11} {:>9} {:>9}",
-        "mesher", "target", "vertices", "cpu_s", "wall_s", "vertices/s", "in_range", "q_min"
+        "{:<10} {:>9} {:>9} {:>9} {:>9} {:>11} {:>9} {:>9} {:>9}",
+        "mesher",
+        "target",
+        "vertices",
+        "cpu_s",
+        "wall_s",
+        "vertices/s",
+        "in_range",
+        "ugawg",
+        "q_min"
     );
     let timeout = Duration::from_secs(a.timeout);
     super::bench_tet::run(&a.vertices, !a.no_mmg3d, timeout, &a.output, |r| {
         println!(
-            "{:<10} {:>9.0e} {:>9} {:>9.2} {:>9.2} {:>11.0} {:>8.2}% {:>9.3}",
+            "{:<10} {:>9.0e} {:>9} {:>9.2} {:>9.2} {:>11.0} {:>8.2}% {:>8.2}% {:>9.3}",
             r.mesher,
             r.target,
             r.vertices,
@@ -154,6 +162,7 @@ fn tet(a: TetArgs) -> Result<()> {
             r.wall,
             r.vertices as f64 / r.cpu,
             100.0 * r.in_range,
+            100.0 * r.in_range_ugawg,
             r.quality_min
         );
     })?;

@@ -9,7 +9,9 @@ use anisomesh::levelset::compare::{compare_zero_levels, interpolate_p1, ZeroLeve
 use anisomesh::levelset::compare3::{compare_zero_levels3, interpolate_p1_tets};
 use anisomesh::metric::interpolate_log;
 use anisomesh::metric::ugawg::UgawgCase;
-use anisomesh::metric::{conformity, conformity_analytic, Conformity, Sym2, Sym3};
+use anisomesh::metric::{
+    conformity, conformity_analytic, conformity_ugawg, Conformity, Sym2, Sym3,
+};
 use anisomesh::{DVec2, Error, Location, Mesh2, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -143,6 +145,16 @@ fn transfer(reference: &Mesh2, on_ref: &[Sym2], points: &[DVec2]) -> Vec<Sym2> {
         .collect()
 }
 
+/// Prints the share of edges in range and the worst mean ratio by the UGAWG measures
+/// ([`anisomesh::metric::conformity_ugawg`]), the line to compare with the UGAWG study.
+pub fn print_ugawg_line(c: &Conformity) {
+    println!(
+        "  UGAWG measures (end-point lengths, as the UGAWG study rates meshes): in [1/sqrt2, sqrt2] {:.2}%  mean ratio min {:.4}",
+        100.0 * c.edge_length_in_range,
+        c.mean_ratio_min
+    );
+}
+
 /// Prints the statistics in the text layout of `measure`.
 pub fn print_conformity(title: &str, c: &Conformity) {
     println!("{title}");
@@ -226,6 +238,18 @@ fn against(a: &MeasureArgs, mesh: &UserMesh) -> Result<Option<ZeroLevelCompariso
     }
 }
 
+/// With `--ugawg CASE` on a tetrahedral mesh: the statistics by the UGAWG measures (the field
+/// at the vertices, the study's end-point length rule), beside the integrated ones.
+fn ugawg_measures(a: &MeasureArgs, mesh: &UserMesh) -> Result<Option<Conformity>> {
+    match (&a.ugawg, mesh) {
+        (Some(c), UserMesh::Tet { points, cells }) => {
+            let at_vertices = UgawgCase::parse(c)?.field(points);
+            Ok(Some(conformity_ugawg(points, cells, &at_vertices)?))
+        }
+        _ => Ok(None),
+    }
+}
+
 /// Runs `anisomesh measure`.
 pub fn run(a: MeasureArgs) -> Result<()> {
     if let Some(shape) = &a.shape {
@@ -245,6 +269,7 @@ pub fn run(a: MeasureArgs) -> Result<()> {
     }
     let mesh = read_user_mesh(&a.mesh)?;
     let (c, name) = measure(&a, &mesh)?;
+    let by_ugawg = ugawg_measures(&a, &mesh)?;
     let cmp = against(&a, &mesh)?;
     if a.json {
         let v = serde_json::json!({
@@ -252,6 +277,7 @@ pub fn run(a: MeasureArgs) -> Result<()> {
             "dimension": mesh.dim(),
             "metric": name,
             "conformity": c,
+            "ugawg_measures": by_ugawg,
             "against": cmp,
         });
         println!(
@@ -268,6 +294,9 @@ pub fn run(a: MeasureArgs) -> Result<()> {
             ),
             &c,
         );
+        if let Some(u) = &by_ugawg {
+            print_ugawg_line(u);
+        }
         if let Some(z) = cmp {
             println!(
                 "zero level against {}: Hausdorff {:.3e} (to {:.3e}, from {:.3e}); {} {:.10} vs \

@@ -1,13 +1,14 @@
 //! `anisomesh ugawg cube-linear|cube-polar-1 [--n N] -o DIR`: the starting mesh of a UGAWG
 //! benchmark (the Kuhn mesh of `[0,1]³` with `N` cubes per side), its metric at the vertices as a
-//! Medit `.sol` (what `mmg3d_O3 -in DIR/CASE.mesh -sol DIR/CASE.sol` reads), and the UGAWG
-//! statistics of that mesh in the analytic metric.
+//! Medit `.sol` (what `mmg3d_O3 -in DIR/CASE.mesh -sol DIR/CASE.sol` reads), and the
+//! statistics of that mesh in the analytic metric: edge lengths integrated along the edges, and
+//! the UGAWG measures (end-point rule) that the UGAWG study's published shares use.
 
-use super::measure::print_conformity;
+use super::measure::{print_conformity, print_ugawg_line};
 use anisomesh::io::{self, Medit3, Sol};
 use anisomesh::mesh3::Mesh3;
-use anisomesh::metric::conformity_analytic;
 use anisomesh::metric::ugawg::UgawgCase;
+use anisomesh::metric::{conformity_analytic, conformity_ugawg};
 use anisomesh::{DVec3, Error, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -76,6 +77,11 @@ pub fn run(a: UgawgArgs) -> Result<()> {
         ),
         &c,
     );
+    print_ugawg_line(&conformity_ugawg(
+        &mesh.points,
+        &mesh.tets,
+        &case.field(&mesh.points),
+    )?);
     println!("wrote {}", mesh_path.display());
     println!("wrote {}", sol_path.display());
     if a.adapt {
@@ -126,6 +132,12 @@ fn adapt(case: UgawgCase, start: &Mesh3, dir: &std::path::Path) -> Result<()> {
         ),
         &c,
     );
+    let at_vertices = case.field(&a.mesh.points);
+    print_ugawg_line(&conformity_ugawg(
+        &a.mesh.points,
+        &a.mesh.tets,
+        &at_vertices,
+    )?);
     print_passes(&r.adapt);
     let path = dir.join(format!("{}_adapted.mesh", case.name()));
     io::write_medit3(&path, &to_medit3(&a.mesh))?;
