@@ -11,7 +11,23 @@
 
 use super::Ctx;
 use crate::adapt::pass::{run_pass, Operator};
-use crate::mesh3::edit::{sorted3, tet_face};
+use crate::mesh3::edit::{sorted3, tet_face, EditMesh3};
+
+/// Per vertex: whether it is a vertex of a live tetrahedron created or moved at or after pass
+/// `since`. An edge or face with an unmarked vertex has no such tetrahedron around it, so the
+/// search of its shell or face pair can be skipped (one sweep over the tetrahedra instead of a
+/// ball scan per candidate).
+fn fresh_vertices(m: &EditMesh3, since: u32) -> Vec<bool> {
+    let mut fresh = vec![false; m.points.len()];
+    for (tet, &stamp) in m.tets.iter().zip(&m.tet_stamp) {
+        if stamp >= since && tet[0] != crate::mesh::NONE {
+            for v in tet {
+                fresh[*v as usize] = true;
+            }
+        }
+    }
+    fresh
+}
 
 /// Shells and face pairs whose worst quality (mean ratio) is below this are examined.
 pub(crate) const Q_SWAP: f64 = 0.6;
@@ -35,12 +51,15 @@ impl Operator<Ctx<'_>> for EdgeRemoval {
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
         let since = ctx.start(super::Op::EdgeRemoval);
         let bad = ctx.bad_tets(Q_SWAP, 0);
+        let marked = fresh_vertices(&ctx.mesh, since);
         let mut e: Vec<(u32, u32, u64)> = Vec::with_capacity(6 * bad.len());
         for t in bad {
             let tet = ctx.mesh.tets[t as usize];
             let q = ctx.tq[t as usize].max(0.0).to_bits();
             for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
-                e.push((tet[i].min(tet[j]), tet[i].max(tet[j]), q));
+                if marked[tet[i] as usize] && marked[tet[j] as usize] {
+                    e.push((tet[i].min(tet[j]), tet[i].max(tet[j]), q));
+                }
             }
         }
         e.sort_unstable();
@@ -112,6 +131,7 @@ impl Operator<Ctx<'_>> for FaceSwap {
     fn sites(&mut self, ctx: &mut Ctx<'_>) -> Vec<Self::Site> {
         let since = ctx.start(super::Op::FaceSwap);
         let bad = ctx.bad_tets(Q_SWAP, 0);
+        let marked = fresh_vertices(&ctx.mesh, since);
         let mut fs: Vec<([u32; 3], u64)> = Vec::with_capacity(4 * bad.len());
         for t in bad {
             let tet = ctx.mesh.tets[t as usize];
@@ -122,9 +142,10 @@ impl Operator<Ctx<'_>> for FaceSwap {
                     continue;
                 }
                 let fresh = ctx.mesh.tet_stamp[t as usize] >= since
-                    || ctx.mesh.face_pair(f).is_some_and(|p| {
-                        p.iter().any(|&x| ctx.mesh.tet_stamp[x as usize] >= since)
-                    });
+                    || (f.iter().all(|&v| marked[v as usize])
+                        && ctx.mesh.face_pair(f).is_some_and(|p| {
+                            p.iter().any(|&x| ctx.mesh.tet_stamp[x as usize] >= since)
+                        }));
                 if fresh {
                     fs.push((f, q));
                 }
