@@ -125,12 +125,15 @@ fn nearest(
 ) -> (f64, u32) {
     // `|cos|` of the best triangle, computed when a tie needs it.
     let mut bcos = f64::NAN;
-    // The candidates seen, with a one-word filter (bit `t mod 64`) in front of the list.
+    // The candidates seen, with a one-word filter (bit `t mod 64`) in front of the list; the
+    // neighbours mostly propose the same triangle, so a repeat of the last one is skipped first.
     let (mut seen, mut ns, mut filter) = ([NONE; 27], 0, 0u64);
+    let mut last = NONE;
     for t in cands {
-        if t == NONE || t == bt {
+        if t == NONE || t == last || t == bt {
             continue;
         }
+        last = t;
         let bit = 1u64 << (t % 64);
         if filter & bit != 0 && seen[..ns].contains(&t) {
             continue;
@@ -308,7 +311,8 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
         &mut best,
         &mut dist,
     );
-    // The distance to the trilinear zero level from the nearest triangle, and the side of it.
+    // The distance to the trilinear zero level from the nearest triangle, and the side of it
+    // (needed only where the old field gives no sign).
     let (dist, side): (Vec<f64>, Vec<f64>) = (0..coords.len())
         .into_par_iter()
         .map(|i| match best[i] {
@@ -316,9 +320,12 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
             t => {
                 let p = lat.pos(coords[i]);
                 let q = tris.closest(t, p);
+                let d = (p - l.project(lat, t, q)).length();
+                if old[i].is_some() {
+                    return (d, 1.0);
+                }
                 let [a, b, c] = l.tris[t as usize];
                 let s = (p - q).dot((b - a).cross(c - a));
-                let d = (p - l.project(lat, t, q)).length();
                 (d, if s < 0.0 { -1.0 } else { 1.0 })
             }
         })
