@@ -164,17 +164,7 @@ pub fn conformity<const D: usize, const N: usize, S: SymTensor<D>>(
     cells: &[[u32; N]],
     metric: &[S],
 ) -> Result<Conformity> {
-    check_inputs(points.len(), cells, metric)?;
-    let edges = cell_edges(cells);
-    let lengths: Vec<f64> = edges
-        .par_iter()
-        .map(|&[a, b]| {
-            let (a, b) = (a as usize, b as usize);
-            let e = points[b] - points[a];
-            linear_size_length(metric[a].quad(e).sqrt(), metric[b].quad(e).sqrt())
-        })
-        .collect();
-    Ok(summarise(points, cells, metric, &lengths))
+    from_end_lengths(points, cells, metric, linear_size_length)
 }
 
 /// [`conformity`] with the edge lengths of the UGAWG measures ([`ugawg_length`] of the end
@@ -188,6 +178,17 @@ pub fn conformity_ugawg<const D: usize, const N: usize, S: SymTensor<D>>(
     cells: &[[u32; N]],
     metric: &[S],
 ) -> Result<Conformity> {
+    from_end_lengths(points, cells, metric, ugawg_length)
+}
+
+/// The statistics with each edge length given by `rule(ℓ_a, ℓ_b)` of its end lengths
+/// `ℓ_a = |e|_{M_a}`, `ℓ_b = |e|_{M_b}`.
+fn from_end_lengths<const D: usize, const N: usize, S: SymTensor<D>>(
+    points: &[S::Vec],
+    cells: &[[u32; N]],
+    metric: &[S],
+    rule: fn(f64, f64) -> f64,
+) -> Result<Conformity> {
     check_inputs(points.len(), cells, metric)?;
     let edges = cell_edges(cells);
     let lengths: Vec<f64> = edges
@@ -195,7 +196,7 @@ pub fn conformity_ugawg<const D: usize, const N: usize, S: SymTensor<D>>(
         .map(|&[a, b]| {
             let (a, b) = (a as usize, b as usize);
             let e = points[b] - points[a];
-            ugawg_length(metric[a].quad(e).sqrt(), metric[b].quad(e).sqrt())
+            rule(metric[a].quad(e).sqrt(), metric[b].quad(e).sqrt())
         })
         .collect();
     Ok(summarise(points, cells, metric, &lengths))

@@ -63,7 +63,8 @@ pub fn run(a: UgawgArgs) -> Result<()> {
     let mesh_path = a.output.join(format!("{}.mesh", case.name()));
     let sol_path = a.output.join(format!("{}.sol", case.name()));
     io::write_medit3(&mesh_path, &to_medit3(&mesh))?;
-    io::write_sol(&sol_path, &Sol::metric3(&case.field(&mesh.points)))?;
+    let field = case.field(&mesh.points);
+    io::write_sol(&sol_path, &Sol::metric3(&field))?;
     let metric = move |p| case.metric(p);
     let c = conformity_analytic(&mesh.points, &mesh.tets, &metric)?;
     print_conformity(
@@ -77,11 +78,7 @@ pub fn run(a: UgawgArgs) -> Result<()> {
         ),
         &c,
     );
-    print_ugawg_line(&conformity_ugawg(
-        &mesh.points,
-        &mesh.tets,
-        &case.field(&mesh.points),
-    )?);
+    print_ugawg_line(&conformity_ugawg(&mesh.points, &mesh.tets, &field)?);
     println!("wrote {}", mesh_path.display());
     println!("wrote {}", sol_path.display());
     if a.adapt {
