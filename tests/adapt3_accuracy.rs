@@ -137,7 +137,7 @@ fn star_is_within_eps_and_every_stage_near_its_complexity() {
         assert!(s.peak_vertices as f64 <= 6.0 * s.complexity, "{s:?}");
     }
     let last = stages.last().unwrap();
-    assert!(last.scale == 1.0 && last.eps == eps);
+    assert!(last.scale == 1.0 && last.eps == Some(eps));
     let n = a.mesh.n_points() as f64;
     assert!((1.0..3.0).contains(&(n / last.complexity)), "{n} {last:?}");
 }

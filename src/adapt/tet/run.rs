@@ -250,8 +250,14 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     let seen;
     let coarsening = Scale::default();
     let shape_metric;
+    let cap = Scale::new(f64::INFINITY);
+    let capped;
     let (source, shape): (MetricFn3<'_>, Option<&dyn Shape<DVec3>>) = match target {
-        Target3::Metric(f) => (f, None),
+        Target3::Metric(f) => {
+            let cap = &cap;
+            capped = move |p: DVec3| stages::capped(f(p), cap.get());
+            (&capped, None)
+        }
         Target3::Shape(s) => {
             lm.validate()?;
             seen = Seen3::new(s, (opts.hi - opts.lo).length());
@@ -278,7 +284,36 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     ctx.l_max = opts.adapt.l_max;
     let mut rep = AdaptReport::default();
     let mut stage_reports = Vec::new();
-    if shape.is_some() {
+    let metric_stages = match shape {
+        Some(_) => None,
+        None if cont == Continuation3::Off => None,
+        None => Some(stages::SizeFloors::new(&mesh, &ctx.metric)),
+    };
+    if let Some(floors) = metric_stages.filter(|f| f.count > 0) {
+        for k in (0..=floors.count).rev() {
+            let h = floors.floor(k);
+            cap.set(1.0 / (h * h));
+            refresh_metric(&mut ctx, source)?;
+            let start = alive_points(&ctx.mesh);
+            let mut r = AdaptReport::default();
+            let churn = if k == 0 { 200 } else { 50 };
+            cycle3::cycles(&mut ctx, &opts.adapt, churn, opts.adapt.max_cycles, &mut r)?;
+            stage_reports.push(Stage3 {
+                scale: f64::from(1u32 << k),
+                eps: None,
+                hmin: if k == 0 { floors.smallest } else { h },
+                band: None,
+                start_vertices: start,
+                vertices: alive_points(&ctx.mesh),
+                peak_vertices: stages::peak(start, &r),
+                complexity: stages::complexity(&ctx.mesh, &ctx.metric),
+                passes: r.passes.len(),
+                seconds: stages::seconds_by_kind(&r),
+            });
+            rep.absorb(&r);
+            rep.converged = r.converged;
+        }
+    } else if shape.is_some() {
         // Continuation: the eq. (6) metric seen 2^k times coarser, k = K, …, 1, before the
         // metric itself (`stages`).
         for k in (0..=stages::stage_count(&lm, cont)).rev() {
@@ -295,9 +330,9 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
             let c = coarsened(&lm, cont, s);
             stage_reports.push(Stage3 {
                 scale: s,
-                eps: c.eps,
+                eps: Some(c.eps),
                 hmin: c.hmin,
-                band: c.band,
+                band: Some(c.band),
                 start_vertices: start,
                 vertices: alive_points(&ctx.mesh),
                 peak_vertices: stages::peak(start, &r),

@@ -73,8 +73,9 @@ pub struct AdaptArgs {
     /// or an --expr in x, y, z).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
     dim: u8,
-    /// --dim 3 with a shape: reach the metric through stages with every size doubled
-    /// ("sizes", default), with only hmin and the band doubled ("normal"), or directly ("off").
+    /// 3D: reach a shape's metric through stages with every size doubled ("sizes", default),
+    /// with only hmin and the band doubled ("normal"), or directly ("off"); a 3D metric file's
+    /// through stages with its smallest sizes raised (any but "off").
     #[arg(long, value_parser = ["sizes", "normal", "off"])]
     continuation: Option<String>,
 }
@@ -154,9 +155,8 @@ pub fn run(a: AdaptArgs) -> Result<()> {
             mesh,
             &stem,
             sol,
-            metric3,
+            &super::adapt3::options(metric3, a.continuation.as_deref(), a.max_vertices)?,
             a.hgrad,
-            a.max_vertices,
             &a.output,
         );
     }
@@ -180,10 +180,8 @@ pub fn run(a: AdaptArgs) -> Result<()> {
         return super::adapt3::run(
             a.shape.as_deref(),
             a.expr.as_deref(),
-            a.continuation.as_deref(),
-            metric3,
+            &super::adapt3::options(metric3, a.continuation.as_deref(), a.max_vertices)?,
             a.hgrad,
-            a.max_vertices,
             &a.output,
         );
     }

@@ -60,30 +60,17 @@ pub(crate) fn shape3(
     })
 }
 
-/// Runs the 3D adaptation and prints its numbers. `metric` is the eq. (6) setting after the
-/// command-line flags; `hgrad` grades the metric ([`anisomesh::adapt::run3_graded`]);
-/// `max_vertices` bounds the run.
+/// Runs the 3D adaptation with `opts` ([`options`]) and prints its numbers; `hgrad` grades
+/// the metric ([`anisomesh::adapt::run3_graded`]).
 pub fn run(
     name: Option<&str>,
     expr: Option<&str>,
-    continuation: Option<&str>,
-    metric: impl Fn(LevelSetMetric) -> LevelSetMetric,
+    opts: &Run3Options,
     hgrad: Option<f64>,
-    max_vertices: f64,
     out_dir: &Path,
 ) -> Result<()> {
     let (name, shape) = shape3(name, expr)?;
-    let mut opts = options(metric, max_vertices);
-    opts.continuation = match continuation {
-        None | Some("sizes") => Continuation3::Sizes,
-        Some("normal") => Continuation3::Normal,
-        Some("off") => Continuation3::Off,
-        Some(c) => {
-            return Err(Error::InvalidInput(format!(
-                "--continuation '{c}': expected sizes, normal or off"
-            )))
-        }
-    };
+    let opts = opts.clone();
     let a = match hgrad {
         Some(beta) => run3_graded(shape.as_ref(), None, &opts, beta)?,
         None => run3(Target3::Shape(shape.as_ref()), None, &opts)?,
@@ -91,8 +78,25 @@ pub fn run(
     print_and_write(&a, &format!("{name}3d"), None, out_dir)
 }
 
-/// [`Run3Options`] with the command line's metric setting and vertex limit.
-fn options(metric: impl Fn(LevelSetMetric) -> LevelSetMetric, max_vertices: f64) -> Run3Options {
+/// The `--continuation` flag ([`Continuation3`]; default: sizes).
+fn parse_continuation(continuation: Option<&str>) -> Result<Continuation3> {
+    match continuation {
+        None | Some("sizes") => Ok(Continuation3::Sizes),
+        Some("normal") => Ok(Continuation3::Normal),
+        Some("off") => Ok(Continuation3::Off),
+        Some(c) => Err(Error::InvalidInput(format!(
+            "--continuation '{c}': expected sizes, normal or off"
+        ))),
+    }
+}
+
+/// [`Run3Options`] with the command line's metric setting (`metric`: the eq. (6) setting
+/// after the flags), `--continuation` and vertex limit.
+pub fn options(
+    metric: impl Fn(LevelSetMetric) -> LevelSetMetric,
+    continuation: Option<&str>,
+    max_vertices: f64,
+) -> Result<Run3Options> {
     let base = Run3Options::default();
     let mut opts = Run3Options {
         metric: metric(base.metric),
@@ -101,7 +105,8 @@ fn options(metric: impl Fn(LevelSetMetric) -> LevelSetMetric, max_vertices: f64)
     opts.adapt = opts
         .adapt
         .max_vertices(Some(max_vertices.min(1e9) as usize));
-    opts
+    opts.continuation = parse_continuation(continuation)?;
+    Ok(opts)
 }
 
 /// What a 3D `.sol` given with `adapt --input` holds.
@@ -123,12 +128,11 @@ pub fn run_files(
     mesh: &Mesh3,
     stem: &str,
     sol: Sol3,
-    metric: impl Fn(LevelSetMetric) -> LevelSetMetric,
+    opts: &Run3Options,
     hgrad: Option<f64>,
-    max_vertices: f64,
     out_dir: &Path,
 ) -> Result<()> {
-    let opts = options(metric, max_vertices);
+    let opts = opts.clone();
     let name = format!("{stem}_adapted");
     match sol {
         Sol3::Metric(m) => {
@@ -244,14 +248,18 @@ fn print_and_write(a: &Adapted3, name: &str, source: Option<&str>, out_dir: &Pat
         }
     );
     for s in &r.stages {
+        let sizes = match (s.eps, s.band) {
+            (Some(eps), Some(band)) => {
+                format!("eps {eps:.2e} hmin {:.2e} band {band:.2e}", s.hmin)
+            }
+            _ if s.scale == 1.0 => "target metric".to_string(),
+            _ => format!("sizes at least {:.2e}", s.hmin),
+        };
         println!(
-            "stage x{:<3} eps {:.2e} hmin {:.2e} band {:.2e}: vertices {} -> {} (peak {}), \
+            "stage x{:<3} {sizes}: vertices {} -> {} (peak {}), \
              complexity {:.0} ({:.2} vertices per unit), {} passes, s split/collapse/swap/smooth \
              {:.1}/{:.1}/{:.1}/{:.1}",
             s.scale,
-            s.eps,
-            s.hmin,
-            s.band,
             s.start_vertices,
             s.vertices,
             s.peak_vertices,

@@ -71,7 +71,7 @@ pub struct TetArgs {
     /// Time limit of each mmg3d run, in seconds.
     #[arg(long, default_value_t = 3600)]
     timeout: u64,
-    /// Output directory (the inputs and mmg3d's meshes).
+    /// Output directory (the inputs, both meshers' meshes).
     #[arg(short, long, default_value = "out/bench_tet")]
     output: PathBuf,
 }

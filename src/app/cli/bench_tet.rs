@@ -142,10 +142,14 @@ pub fn run(
         };
         row(&ours);
         rows.push(ours);
+        let tag = format!("cube-linear-{n:.0e}");
+        io::write_medit3(
+            &dir.join(format!("{tag}_anisomesh.mesh")),
+            &to_medit3(&a.mesh),
+        )?;
         let Some(prog) = &mmg else {
             continue;
         };
-        let tag = format!("cube-linear-{n:.0e}");
         let mesh_in = dir.join(format!("{tag}.mesh"));
         let sol_in = dir.join(format!("{tag}.sol"));
         let mesh_out = dir.join(format!("{tag}_mmg3d.mesh"));
