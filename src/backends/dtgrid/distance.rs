@@ -13,7 +13,7 @@
 
 use super::band::{Band, GridCoord};
 use super::lattice::{Lattice, C3};
-use super::nbhd::{neighbourhoods, Nbhd};
+use super::nbhd::{neighbourhoods, Nbhd, SLOT_SELF, WITHIN};
 use super::surface::closest_on_triangle;
 pub use super::zero_level::zero_level_integral;
 pub(crate) use super::zero_level::{level, Level};
@@ -116,20 +116,22 @@ impl<'a> Tris<'a> {
 
 /// The nearest to `p` of the current best `(bd, bt)` and the triangles `cands` (repeats and
 /// `NONE` skipped): ties within `tie` go to the triangle facing `p` most, then the lowest index.
+/// Each candidate comes with a tag (the slot of the neighbour proposing it), returned with the
+/// winner (`tag` for the current best).
 fn nearest(
     tris: &Tris,
     p: DVec3,
-    (mut bd, mut bt): (f64, u32),
+    (mut bd, mut bt, mut btag): (f64, u32, u32),
     tie: f64,
-    cands: impl Iterator<Item = u32>,
-) -> (f64, u32) {
+    cands: impl Iterator<Item = (u32, u32)>,
+) -> (f64, u32, u32) {
     // `|cos|` of the best triangle, computed when a tie needs it.
     let mut bcos = f64::NAN;
     // The candidates seen, with a one-word filter (bit `t mod 64`) in front of the list; the
     // neighbours mostly propose the same triangle, so a repeat of the last one is skipped first.
     let (mut seen, mut ns, mut filter) = ([NONE; 27], 0, 0u64);
     let mut last = NONE;
-    for t in cands {
+    for (tag, t) in cands {
         if t == NONE || t == last || t == bt {
             continue;
         }
@@ -146,18 +148,18 @@ fn nearest(
         }
         let d = tris.distance(t, p);
         if d < bd - tie {
-            (bd, bt, bcos) = (d, t, f64::NAN);
+            (bd, bt, btag, bcos) = (d, t, tag, f64::NAN);
         } else if (d - bd).abs() <= tie {
             if bcos.is_nan() {
                 bcos = tris.cos(bt, p);
             }
             let cos = tris.cos(t, p);
             if cos > bcos || (cos == bcos && t < bt) {
-                (bd, bt, bcos) = (d, t, cos);
+                (bd, bt, btag, bcos) = (d, t, tag, cos);
             }
         }
     }
-    (bd, bt)
+    (bd, bt, btag)
 }
 
 /// Up to `layers` Jacobi passes in which every node (position `pos`) takes the nearest of its
@@ -167,9 +169,12 @@ fn nearest(
 /// from the changes, not a test of 27 flags per node), and only the triangles of those
 /// neighbours are candidates: a neighbour's triangle from an earlier pass was measured when that
 /// neighbour changed (or in the first pass) and lost, and the best distance only falls, so it
-/// cannot win now. The states after every pass are those of full passes. A candidate is
-/// measured only when its lower bound can beat the best so far (the node's own triangle, whose
-/// distance is known, bounds the search from the start).
+/// cannot win now. Nor is a changed neighbour's triangle a candidate when the neighbour took it
+/// from a node that is itself in this node's neighbourhood (each node keeps the slot of the
+/// neighbour its triangle came from): that node held it a pass earlier, so it was measured here
+/// then (or, by the same rule, before). The states after every pass are those of full passes. A
+/// candidate is measured only when its lower bound can beat the best so far (the node's own
+/// triangle, whose distance is known, bounds the search from the start).
 fn propagate(
     tris: &Tris,
     nbr: &[Nbhd],
@@ -183,23 +188,28 @@ fn propagate(
     let mut mark = vec![false; nbr.len()];
     // The pass in which a node's triangle last changed (0: a seed's, or none).
     let mut stamp = vec![0u32; nbr.len()];
+    // The slot, in a node's neighbourhood, of the neighbour its triangle came from.
+    let mut from = vec![SLOT_SELF as u8; nbr.len()];
     // Per visited node its nearest triangle this pass (one buffer for all passes).
-    let mut found: Vec<(f64, u32)> = Vec::new();
+    let mut found: Vec<(f64, u32, u32)> = Vec::new();
     for pass in 1..=layers as u32 {
-        let (b, s, dd) = (&*best, &stamp, &*dist);
+        let (b, s, f, dd) = (&*best, &stamp, &from, &*dist);
         visit
             .par_iter()
             .map(|&i| {
                 let i = i as usize;
                 let fresh = nbr[i]
-                    .iter()
-                    .filter(|&j| pass == 1 || s[j as usize] == pass - 1)
-                    .map(|j| b[j as usize]);
-                nearest(tris, pos(i), (dd[i], b[i]), tie, fresh)
+                    .slots()
+                    .filter(|&(slot, j)| {
+                        let j = j as usize;
+                        pass == 1 || (s[j] == pass - 1 && WITHIN[slot as usize] >> f[j] & 1 == 0)
+                    })
+                    .map(|(slot, j)| (slot, b[j as usize]));
+                nearest(tris, pos(i), (dd[i], b[i], SLOT_SELF), tie, fresh)
             })
             .collect_into_vec(&mut found);
         let mut changed = false;
-        for (&i, &(d, t)) in visit.iter().zip(&found) {
+        for (&i, &(d, t, slot)) in visit.iter().zip(&found) {
             let i = i as usize;
             if t == best[i] {
                 continue;
@@ -208,6 +218,7 @@ fn propagate(
             best[i] = t;
             dist[i] = d;
             stamp[i] = pass;
+            from[i] = slot as u8;
             for j in nbr[i].iter() {
                 mark[j as usize] = true;
             }
@@ -429,8 +440,9 @@ mod tests {
             for _ in 0..layers {
                 let new: Vec<(f64, u32)> = (0..n)
                     .map(|i| {
-                        let all = nbr[i].iter().map(|j| rb[j as usize]);
-                        nearest(&tris, pos(i), (rd[i], rb[i]), tie, all)
+                        let all = nbr[i].slots().map(|(s, j)| (s, rb[j as usize]));
+                        let (d, t, _) = nearest(&tris, pos(i), (rd[i], rb[i], SLOT_SELF), tie, all);
+                        (d, t)
                     })
                     .collect();
                 (rd, rb) = new.into_iter().unzip();
