@@ -124,6 +124,7 @@ fn mcf_element_product_takes_the_assembled_steps() {
     // (j = 1, τ = h², inner iteration), then Table 2.2's run on 33³ (j = 2).
     use anisomesh::backends::dtgrid::lattice::Lattice;
     use anisomesh::backends::dtgrid::mcf::McfState;
+    use anisomesh::backends::dtgrid::Band;
     let lat = Lattice::unit(65).unwrap();
     let start: McfState<B> = McfState::new(lat, 1, &|p| p.length() - 1.0 / 3.0).unwrap();
     let o = McfOptions::default();
