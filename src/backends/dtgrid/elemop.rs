@@ -176,7 +176,7 @@ impl ElementOperator {
     /// error).
     pub fn apply(&self, x: &[f64], y: &mut [f64], fixed: Option<&[bool]>) {
         let n = self.len();
-        assert!(x.len() == n && y.len() == n && fixed.is_none_or(|f| f.len() == n));
+        assert!(x.len() == n && y.len() == n && fixed.map_or(true, |f| f.len() == n));
         let b = basis();
         let mut tasks = Vec::with_capacity(self.ranges.len());
         let mut rest = y;

@@ -97,7 +97,7 @@ const fn shared_cell() -> [u8; 27] {
             let mut inside = true;
             let mut k = 0;
             while k < 3 {
-                let v = ((c >> k) & 1) as i32 - o[k];
+                let v = ((c >> k) & 1) - o[k];
                 if v < 0 || v > 1 {
                     inside = false;
                 }
