@@ -13,7 +13,7 @@
 
 use super::band::{Band, GridCoord};
 use super::lattice::{Lattice, C3};
-use super::nbhd::{neighbourhoods, Nbhd};
+use super::nbhd::{neighbourhoods, Nbhd, SHARED_CELL, SLOT_SELF, WITHIN};
 use super::surface::closest_on_triangle;
 pub use super::zero_level::zero_level_integral;
 pub(crate) use super::zero_level::{level, Level};
@@ -21,6 +21,13 @@ use crate::geom::DVec3;
 use rayon::prelude::*;
 
 const NONE: u32 = u32::MAX;
+
+/// Seed flags (see [`propagate`]): the node's triangle is the nearest of a crossed cell it is a
+/// corner of (the corner in the low three bits).
+const FROM_CELL: u8 = 8;
+/// Seed flags: every triangle of the node's crossed cells but its own is farther than its own by
+/// more than the tie tolerance.
+const CLEAR: u8 = 16;
 
 /// Which values of the field are kept on the new band instead of the distance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -116,20 +123,22 @@ impl<'a> Tris<'a> {
 
 /// The nearest to `p` of the current best `(bd, bt)` and the triangles `cands` (repeats and
 /// `NONE` skipped): ties within `tie` go to the triangle facing `p` most, then the lowest index.
+/// Each candidate comes with a tag (the slot of the neighbour proposing it), returned with the
+/// winner (`tag` for the current best).
 fn nearest(
     tris: &Tris,
     p: DVec3,
-    (mut bd, mut bt): (f64, u32),
+    (mut bd, mut bt, mut btag): (f64, u32, u32),
     tie: f64,
-    cands: impl Iterator<Item = u32>,
-) -> (f64, u32) {
+    cands: impl Iterator<Item = (u32, u32)>,
+) -> (f64, u32, u32) {
     // `|cos|` of the best triangle, computed when a tie needs it.
     let mut bcos = f64::NAN;
     // The candidates seen, with a one-word filter (bit `t mod 64`) in front of the list; the
     // neighbours mostly propose the same triangle, so a repeat of the last one is skipped first.
     let (mut seen, mut ns, mut filter) = ([NONE; 27], 0, 0u64);
     let mut last = NONE;
-    for t in cands {
+    for (tag, t) in cands {
         if t == NONE || t == last || t == bt {
             continue;
         }
@@ -146,18 +155,18 @@ fn nearest(
         }
         let d = tris.distance(t, p);
         if d < bd - tie {
-            (bd, bt, bcos) = (d, t, f64::NAN);
+            (bd, bt, btag, bcos) = (d, t, tag, f64::NAN);
         } else if (d - bd).abs() <= tie {
             if bcos.is_nan() {
                 bcos = tris.cos(bt, p);
             }
             let cos = tris.cos(t, p);
             if cos > bcos || (cos == bcos && t < bt) {
-                (bd, bt, bcos) = (d, t, cos);
+                (bd, bt, btag, bcos) = (d, t, tag, cos);
             }
         }
     }
-    (bd, bt)
+    (bd, bt, btag)
 }
 
 /// Up to `layers` Jacobi passes in which every node (position `pos`) takes the nearest of its
@@ -167,15 +176,23 @@ fn nearest(
 /// from the changes, not a test of 27 flags per node), and only the triangles of those
 /// neighbours are candidates: a neighbour's triangle from an earlier pass was measured when that
 /// neighbour changed (or in the first pass) and lost, and the best distance only falls, so it
-/// cannot win now. The states after every pass are those of full passes. A candidate is
-/// measured only when its lower bound can beat the best so far (the node's own triangle, whose
-/// distance is known, bounds the search from the start).
+/// cannot win now. Nor is a changed neighbour's triangle a candidate when the neighbour took it
+/// from a node that is itself in this node's neighbourhood (each node keeps the slot of the
+/// neighbour its triangle came from): that node held it a pass earlier, so it was measured here
+/// then (or, by the same rule, before). In the first pass a seed flagged [`CLEAR`] skips the
+/// triangles its neighbours took from a crossed cell ([`FROM_CELL`], `seeds`) that it is a corner
+/// of too: it measured them when it was seeded, and they lost by more than the tie tolerance.
+/// The states after every pass are those of full passes. A candidate is measured only when its
+/// lower bound can beat the best so far (the node's own triangle, whose distance is known, bounds
+/// the search from the start).
+#[allow(clippy::too_many_arguments)]
 fn propagate(
     tris: &Tris,
     nbr: &[Nbhd],
     pos: &(impl Fn(usize) -> DVec3 + Sync),
     layers: usize,
     tie: f64,
+    seeds: &[u8],
     best: &mut [u32],
     dist: &mut [f64],
 ) {
@@ -183,23 +200,36 @@ fn propagate(
     let mut mark = vec![false; nbr.len()];
     // The pass in which a node's triangle last changed (0: a seed's, or none).
     let mut stamp = vec![0u32; nbr.len()];
+    // The slot, in a node's neighbourhood, of the neighbour its triangle came from.
+    let mut from = vec![SLOT_SELF as u8; nbr.len()];
     // Per visited node its nearest triangle this pass (one buffer for all passes).
-    let mut found: Vec<(f64, u32)> = Vec::new();
+    let mut found: Vec<(f64, u32, u32)> = Vec::new();
     for pass in 1..=layers as u32 {
-        let (b, s, dd) = (&*best, &stamp, &*dist);
+        let (b, s, f, dd) = (&*best, &stamp, &from, &*dist);
         visit
             .par_iter()
             .map(|&i| {
                 let i = i as usize;
+                let clear = seeds[i] & CLEAR != 0;
                 let fresh = nbr[i]
-                    .iter()
-                    .filter(|&j| pass == 1 || s[j as usize] == pass - 1)
-                    .map(|j| b[j as usize]);
-                nearest(tris, pos(i), (dd[i], b[i]), tie, fresh)
+                    .slots()
+                    .filter(|&(slot, j)| {
+                        let j = j as usize;
+                        if pass == 1 {
+                            let sj = seeds[j];
+                            !(clear
+                                && sj & FROM_CELL != 0
+                                && SHARED_CELL[slot as usize] >> (sj & 7) & 1 != 0)
+                        } else {
+                            s[j] == pass - 1 && WITHIN[slot as usize] >> f[j] & 1 == 0
+                        }
+                    })
+                    .map(|(slot, j)| (slot, b[j as usize]));
+                nearest(tris, pos(i), (dd[i], b[i], SLOT_SELF), tie, fresh)
             })
             .collect_into_vec(&mut found);
         let mut changed = false;
-        for (&i, &(d, t)) in visit.iter().zip(&found) {
+        for (&i, &(d, t, slot)) in visit.iter().zip(&found) {
             let i = i as usize;
             if t == best[i] {
                 continue;
@@ -208,6 +238,7 @@ fn propagate(
             best[i] = t;
             dist[i] = d;
             stamp[i] = pass;
+            from[i] = slot as u8;
             for j in nbr[i].iter() {
                 mark[j as usize] = true;
             }
@@ -222,6 +253,67 @@ fn propagate(
             }
         }
     }
+}
+
+/// The seeds of the propagation: per node of `coords` that is a corner of a crossed cell of
+/// `l`, the nearest triangle of its crossed cells and its distance (`NONE` and infinity
+/// elsewhere), whether it is such a corner, and its flags for [`propagate`].
+fn seeds(
+    lat: &Lattice,
+    l: &Level,
+    tris: &Tris,
+    coords: &[C3],
+    tie: f64,
+) -> (Vec<u32>, Vec<f64>, Vec<bool>, Vec<u8>) {
+    let mut best = vec![NONE; coords.len()];
+    let mut dist = vec![f64::INFINITY; coords.len()];
+    let mut seed = vec![false; coords.len()];
+    // Per seed: the corner of the cell of its triangle, and whether a tie came near (see
+    // `propagate`).
+    let mut flags = vec![0u8; coords.len()];
+    let mut tied = vec![false; coords.len()];
+    // One forward cursor per corner: the corners `c + offset` of the sorted crossed cells are
+    // sorted too, so they are found by merging, not by search.
+    let mut cur = [0usize; 8];
+    let mut tri = 0usize;
+    for (id, (c, _)) in l.cells.iter().enumerate() {
+        let start = tri;
+        while tri < l.tri_cell.len() && l.tri_cell[tri] == id as u32 {
+            tri += 1;
+        }
+        for (corner, cur) in cur.iter_mut().enumerate() {
+            let q = GridCoord::corner(*c, corner);
+            while *cur < coords.len() && coords[*cur] < q {
+                *cur += 1;
+            }
+            if *cur == coords.len() || coords[*cur] != q {
+                continue;
+            }
+            let i = *cur;
+            seed[i] = true;
+            let p = lat.pos(q);
+            for t in start as u32..tri as u32 {
+                if tris.beyond(t, p, dist[i] + tie) {
+                    continue;
+                }
+                let d = tris.distance(t, p);
+                if d < dist[i] {
+                    tied[i] |= d >= dist[i] - tie;
+                    dist[i] = d;
+                    best[i] = t;
+                    flags[i] = FROM_CELL | corner as u8;
+                } else {
+                    tied[i] |= d <= dist[i] + tie;
+                }
+            }
+        }
+    }
+    for (f, (&s, &t)) in flags.iter_mut().zip(seed.iter().zip(&tied)) {
+        if s && !t {
+            *f |= CLEAR;
+        }
+    }
+    (best, dist, seed, flags)
 }
 
 /// The values on `to` of the band field `phi` on `from`: the signed distance to the zero level of
@@ -264,41 +356,8 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
     }
     // Seeds: the corners of the crossed cells take the nearest triangle of their cells.
     let tris = Tris::new(&l.tris);
-    let mut best = vec![NONE; coords.len()];
-    let mut dist = vec![f64::INFINITY; coords.len()];
-    let mut seed = vec![false; coords.len()];
-    // One forward cursor per corner: the corners `c + offset` of the sorted crossed cells are
-    // sorted too, so they are found by merging, not by search.
-    let mut cur = [0usize; 8];
-    let mut tri = 0usize;
-    for (id, (c, _)) in l.cells.iter().enumerate() {
-        let start = tri;
-        while tri < l.tri_cell.len() && l.tri_cell[tri] == id as u32 {
-            tri += 1;
-        }
-        for (corner, cur) in cur.iter_mut().enumerate() {
-            let q = GridCoord::corner(*c, corner);
-            while *cur < coords.len() && coords[*cur] < q {
-                *cur += 1;
-            }
-            if *cur == coords.len() || coords[*cur] != q {
-                continue;
-            }
-            let i = *cur;
-            seed[i] = true;
-            let p = lat.pos(q);
-            for t in start as u32..tri as u32 {
-                if tris.beyond(t, p, dist[i]) {
-                    continue;
-                }
-                let d = tris.distance(t, p);
-                if d < dist[i] {
-                    dist[i] = d;
-                    best[i] = t;
-                }
-            }
-        }
-    }
+    let tie = 1e-12 * lat.h;
+    let (mut best, mut dist, seed, flags) = seeds(lat, l, &tris, &coords, tie);
     // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes).
     let nbr = neighbourhoods(&coords);
     let layers = (max_dist / lat.h).ceil() as usize + 1;
@@ -307,7 +366,8 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
         &nbr,
         &|i| lat.pos(coords[i]),
         layers,
-        1e-12 * lat.h,
+        tie,
+        &flags,
         &mut best,
         &mut dist,
     );
@@ -417,6 +477,7 @@ mod tests {
         let pos = |i: usize| lat.pos(coords[i]);
         let tie = 1e-12 * lat.h;
         let n = coords.len();
+        let no_flags = vec![0u8; n];
         for layers in [1, 2, 8] {
             let mut best = vec![NONE; n];
             let mut dist = vec![f64::INFINITY; n];
@@ -425,12 +486,15 @@ mod tests {
                 dist[i] = tris.distance(best[i], pos(i));
             }
             let (mut rb, mut rd) = (best.clone(), dist.clone());
-            propagate(&tris, &nbr, &pos, layers, tie, &mut best, &mut dist);
+            propagate(
+                &tris, &nbr, &pos, layers, tie, &no_flags, &mut best, &mut dist,
+            );
             for _ in 0..layers {
                 let new: Vec<(f64, u32)> = (0..n)
                     .map(|i| {
-                        let all = nbr[i].iter().map(|j| rb[j as usize]);
-                        nearest(&tris, pos(i), (rd[i], rb[i]), tie, all)
+                        let all = nbr[i].slots().map(|(s, j)| (s, rb[j as usize]));
+                        let (d, t, _) = nearest(&tris, pos(i), (rd[i], rb[i], SLOT_SELF), tie, all);
+                        (d, t)
                     })
                     .collect();
                 (rd, rb) = new.into_iter().unzip();
@@ -442,6 +506,45 @@ mod tests {
                 .zip(&rd)
                 .all(|(a, b)| a.to_bits() == b.to_bits()));
             assert!(rb.iter().filter(|&&t| t != NONE).count() > n / 2);
+        }
+    }
+
+    #[test]
+    fn seeds_skip_only_triangles_that_lose() {
+        // The first pass skips the triangles a seed measured in its own cells: the result is
+        // that of passes without the seed flags, on an ellipsoid and a wavy sphere.
+        let shapes: [(usize, &(dyn Fn(DVec3) -> f64 + Sync)); 2] = [
+            (29, &|p: DVec3| {
+                (p.x / 0.3).powi(2) + (p.y / 0.25).powi(2) + (p.z / 0.2).powi(2) - 1.0
+            }),
+            (41, &|p: DVec3| {
+                p.length() - 0.3 - 0.02 * (7.0 * p.x).sin() * (5.0 * p.y).cos()
+            }),
+        ];
+        for (n, f) in shapes {
+            let lat = Lattice::unit(n).unwrap();
+            let cross = crossing_cells_of_fn(&lat, &f).unwrap();
+            let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, 2).unwrap();
+            let phi: Vec<f64> = nb.band.coords().map(|c| f(lat.pos(c))).collect();
+            let l = level(&lat, &nb.band, &phi);
+            let tris = Tris::new(&l.tris);
+            let coords: Vec<C3> = nb.band.coords().collect();
+            let nbr = neighbourhoods(&coords);
+            let pos = |i: usize| lat.pos(coords[i]);
+            let tie = 1e-12 * lat.h;
+            let (best, dist, seed, flags) = seeds(&lat, &l, &tris, &coords, tie);
+            let clear = flags.iter().filter(|&&f| f & CLEAR != 0).count();
+            let seeded = seed.iter().filter(|&&s| s).count();
+            assert!(2 * clear > seeded, "{clear} of {seeded} seeds skip");
+            let no_flags = vec![0u8; coords.len()];
+            for layers in [1, 3, 8] {
+                let (mut b1, mut d1) = (best.clone(), dist.clone());
+                propagate(&tris, &nbr, &pos, layers, tie, &flags, &mut b1, &mut d1);
+                let (mut b2, mut d2) = (best.clone(), dist.clone());
+                propagate(&tris, &nbr, &pos, layers, tie, &no_flags, &mut b2, &mut d2);
+                assert_eq!(b1, b2, "{n}³, {layers} passes");
+                assert!(d1.iter().zip(&d2).all(|(a, b)| a.to_bits() == b.to_bits()));
+            }
         }
     }
 

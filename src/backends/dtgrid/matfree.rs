@@ -26,7 +26,7 @@ use rayon::prelude::*;
 const SLABS: usize = 64;
 
 /// The 2-point Gauss rule on `[0, 1]`: the 1D shape functions `1 − t`, `t` at its points.
-fn basis() -> [[f64; 2]; 2] {
+pub(super) fn basis() -> [[f64; 2]; 2] {
     let g = 0.5 / 3f64.sqrt();
     let p = [0.5 - g, 0.5 + g];
     [[1.0 - p[0], p[0]], [1.0 - p[1], p[1]]]
@@ -36,7 +36,7 @@ fn basis() -> [[f64; 2]; 2] {
 /// 2 = y, 4 = z) at the Gauss points `(qx, qy, qz)`: `d[0][qy][qz]`, `d[1][qx][qz]`,
 /// `d[2][qx][qy]` (each component is constant along its own axis).
 #[inline(always)]
-fn gauss_gradients(b: &[[f64; 2]; 2], v: &[f64; 8]) -> [[[f64; 2]; 2]; 3] {
+pub(super) fn gauss_gradients(b: &[[f64; 2]; 2], v: &[f64; 8]) -> [[[f64; 2]; 2]; 3] {
     let mut d = [[[0.0; 2]; 2]; 3];
     // Edge differences along each axis, indexed by the other two corner bits (lower axis first).
     let ex = [[v[1] - v[0], v[5] - v[4]], [v[3] - v[2], v[7] - v[6]]]; // [y][z]
@@ -56,7 +56,7 @@ fn gauss_gradients(b: &[[f64; 2]; 2], v: &[f64; 8]) -> [[[f64; 2]; 2]; 3] {
 /// `out[a] += Σ_q ∇ψ_a(q) · F(q)` for the Gauss-point fluxes `f[qx][qy][qz]` (reference
 /// gradients), the transpose of [`gauss_gradients`].
 #[inline(always)]
-fn scatter_fluxes(b: &[[f64; 2]; 2], f: &[[[[f64; 3]; 2]; 2]; 2], out: &mut [f64; 8]) {
+pub(super) fn scatter_fluxes(b: &[[f64; 2]; 2], f: &[[[[f64; 3]; 2]; 2]; 2], out: &mut [f64; 8]) {
     // Sums of each component along its own axis.
     let mut s = [[[0.0; 2]; 2]; 3];
     for q1 in 0..2 {

@@ -11,11 +11,12 @@
 //! integrals, signed distance), [`backend`] (the band behind the back-end contract),
 //! [`probe`] (point values and curvature of a band field), [`shape_heat`] (the heat equation on
 //! the zero level of any implicit function), [`stencil`] (band assembly by neighbour-offset
-//! masks).
+//! masks), [`elemop`] (the mean curvature system applied element by element).
 
 pub mod backend;
 mod band;
 pub mod distance;
+pub mod elemop;
 pub mod fem;
 pub mod grid;
 pub mod heat;

@@ -25,6 +25,13 @@ impl Nbhd {
     /// present neighbour (no population count per neighbour).
     #[inline]
     pub(super) fn iter(&self) -> impl Iterator<Item = u32> + '_ {
+        self.slots().map(|(_, i)| i)
+    }
+
+    /// The present neighbours as `(slot, index)`, in slot order; slot `dz · 9 + dy · 3 + dx`
+    /// holds the neighbour at offset `(dx − 1, dy − 1, dz − 1)` ([`SLOT_SELF`] the node itself).
+    #[inline]
+    pub(super) fn slots(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
         let mut m = self.mask;
         let mut next = self.base;
         std::iter::from_fn(move || {
@@ -36,9 +43,83 @@ impl Nbhd {
             let k = (slot % 9) as usize;
             let i = next[k];
             next[k] += 1;
-            Some(i)
+            Some((slot, i))
         })
     }
+}
+
+/// The slot of the node itself in its neighbourhood.
+pub(super) const SLOT_SELF: u32 = 13;
+
+/// Per slot `s`: bit `r` is set when the neighbour at slot `r` of the node at slot `s` is itself
+/// in the neighbourhood (the two offsets add up to one within `3³`).
+pub(super) const WITHIN: [u32; 27] = within();
+
+const fn within() -> [u32; 27] {
+    let mut out = [0u32; 27];
+    let mut s = 0;
+    while s < 27 {
+        let mut r = 0;
+        while r < 27 {
+            let (a, b) = (offset(s), offset(r));
+            let mut inside = true;
+            let mut k = 0;
+            while k < 3 {
+                let v = a[k] + b[k];
+                if v < -1 || v > 1 {
+                    inside = false;
+                }
+                k += 1;
+            }
+            if inside {
+                out[s] |= 1 << r;
+            }
+            r += 1;
+        }
+        s += 1;
+    }
+    out
+}
+
+/// Per slot `s`: bit `c` is set when the cell that has the neighbour at slot `s` as its corner
+/// `c` (corner bits: 1 = x, 2 = y, 4 = z) also has the node itself as a corner.
+pub(super) const SHARED_CELL: [u8; 27] = shared_cell();
+
+const fn shared_cell() -> [u8; 27] {
+    let mut out = [0u8; 27];
+    let mut s = 0;
+    while s < 27 {
+        let o = offset(s);
+        let mut c = 0;
+        while c < 8 {
+            // The cell's lowest corner is `o − bits(c)` from the node; the node is a corner when
+            // `bits(c) − o` is 0 or 1 along every axis.
+            let mut inside = true;
+            let mut k = 0;
+            while k < 3 {
+                let v = ((c >> k) & 1) - o[k];
+                if v < 0 || v > 1 {
+                    inside = false;
+                }
+                k += 1;
+            }
+            if inside {
+                out[s] |= 1 << c;
+            }
+            c += 1;
+        }
+        s += 1;
+    }
+    out
+}
+
+/// The offset `(dx, dy, dz)` of slot `s`.
+const fn offset(s: usize) -> [i32; 3] {
+    [
+        (s % 3) as i32 - 1,
+        ((s / 3) % 3) as i32 - 1,
+        (s / 9) as i32 - 1,
+    ]
 }
 
 /// The neighbourhood of every node of the sorted coordinates `coords`, found by one forward

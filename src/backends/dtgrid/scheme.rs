@@ -100,26 +100,41 @@ pub fn solve_dirichlet_rtol(
     x: &mut [f64],
     rtol: f64,
 ) -> Result<usize> {
-    let d = a.diagonal();
-    let mut r = a.mul(x);
+    let apply = |v: &[f64], out: &mut [f64]| {
+        a.matvec(v, out);
+        out.iter_mut().zip(fixed).for_each(|(o, &f)| {
+            if f {
+                *o = 0.0
+            }
+        });
+    };
+    solve_dirichlet_with(apply, &a.diagonal(), b, fixed, x, rtol)
+}
+
+/// [`solve_dirichlet_rtol`] for the operator `apply` (`out = A v` with zeros on the rows of the
+/// `fixed` nodes) with diagonal `diag`.
+/// Errors: as [`solve_all`].
+pub fn solve_dirichlet_with(
+    mut apply: impl FnMut(&[f64], &mut [f64]),
+    diag: &[f64],
+    b: &[f64],
+    fixed: &[bool],
+    x: &mut [f64],
+    rtol: f64,
+) -> Result<usize> {
+    let mut r = vec![0.0; x.len()];
+    apply(x, &mut r);
     r.iter_mut()
         .zip(b)
         .zip(fixed)
         .for_each(|((r, b), &f)| *r = if f { 0.0 } else { b - *r });
     let mut y = vec![0.0; x.len()];
     let rep = pcg(
-        |v, out| {
-            a.matvec(v, out);
-            out.iter_mut().zip(fixed).for_each(|(o, &f)| {
-                if f {
-                    *o = 0.0
-                }
-            });
-        },
+        apply,
         |r, z| {
             z.iter_mut()
                 .zip(r)
-                .zip(&d)
+                .zip(diag)
                 .zip(fixed)
                 .for_each(|(((z, r), d), &f)| *z = if f { 0.0 } else { r / d })
         },
