@@ -36,8 +36,9 @@ pub struct Stage3 {
     pub scale: f64,
     /// The stage's ε (shape targets).
     pub eps: Option<f64>,
-    /// The stage's `hmin` (shape targets) or size floor ([`SizeFloors`], metric targets; the
-    /// smallest size of the metric at the start vertices for the target stage).
+    /// The stage's `hmin` (shape targets) or size floor (metric targets: `2ᵏ` times the
+    /// smallest size of the metric at the start vertices, that smallest size itself for the
+    /// target stage).
     pub hmin: f64,
     /// The stage's band half-width (shape targets).
     pub band: Option<f64>,
