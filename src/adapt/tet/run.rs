@@ -235,6 +235,31 @@ fn final_sweep(ctx: &mut Ctx<'_>, opts: &AdaptOptions, rep: &mut AdaptReport) ->
     Ok(())
 }
 
+/// Runs the cycles of continuation stage `k` (`k = 0`: the target) on `ctx`, adds them to
+/// `rep` and reports the stage (its sizes left for the caller: no ε or band, `hmin` 0).
+fn stage(ctx: &mut Ctx<'_>, opts: &AdaptOptions, k: u32, rep: &mut AdaptReport) -> Result<Stage3> {
+    let start = alive_points(&ctx.mesh);
+    let mut r = AdaptReport::default();
+    // A stage's mesh only has to be close to the next stage's metric (`cycle3`).
+    let churn = if k == 0 { 200 } else { 50 };
+    cycle3::cycles(ctx, opts, churn, opts.max_cycles, &mut r)?;
+    let st = Stage3 {
+        scale: f64::from(1u32 << k),
+        eps: None,
+        hmin: 0.0,
+        band: None,
+        start_vertices: start,
+        vertices: alive_points(&ctx.mesh),
+        peak_vertices: stages::peak(start, &r),
+        complexity: stages::complexity(&ctx.mesh, &ctx.metric),
+        passes: r.passes.len(),
+        seconds: stages::seconds_by_kind(&r),
+    };
+    rep.absorb(&r);
+    rep.converged = r.converged;
+    Ok(st)
+}
+
 /// Adapts the Kuhn mesh of the box of `opts` (or `start`, when given) to `target` and reports
 /// the result. Errors: invalid options or start mesh, a metric that is not SPD and finite at a
 /// vertex, more vertices than `opts.adapt.max_vertices`, a defect found by the per-pass check.
@@ -294,54 +319,29 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
             let h = floors.floor(k);
             cap.set(1.0 / (h * h));
             refresh_metric(&mut ctx, source)?;
-            let start = alive_points(&ctx.mesh);
-            let mut r = AdaptReport::default();
-            let churn = if k == 0 { 200 } else { 50 };
-            cycle3::cycles(&mut ctx, &opts.adapt, churn, opts.adapt.max_cycles, &mut r)?;
+            let st = stage(&mut ctx, &opts.adapt, k, &mut rep)?;
             stage_reports.push(Stage3 {
-                scale: f64::from(1u32 << k),
-                eps: None,
                 hmin: if k == 0 { floors.smallest } else { h },
-                band: None,
-                start_vertices: start,
-                vertices: alive_points(&ctx.mesh),
-                peak_vertices: stages::peak(start, &r),
-                complexity: stages::complexity(&ctx.mesh, &ctx.metric),
-                passes: r.passes.len(),
-                seconds: stages::seconds_by_kind(&r),
+                ..st
             });
-            rep.absorb(&r);
-            rep.converged = r.converged;
         }
     } else if shape.is_some() {
         // Continuation: the eq. (6) metric seen 2^k times coarser, k = K, …, 1, before the
         // metric itself (`stages`).
         for k in (0..=stages::stage_count(&lm, cont)).rev() {
-            let s = (1u64 << k) as f64;
+            let s = f64::from(1u32 << k);
             coarsening.set(s);
             if k > 0 || !stage_reports.is_empty() {
                 refresh_metric(&mut ctx, source)?;
             }
-            let start = alive_points(&ctx.mesh);
-            let mut r = AdaptReport::default();
-            // A stage's mesh only has to be close to the next stage's metric (`cycle3`).
-            let churn = if k == 0 { 200 } else { 50 };
-            cycle3::cycles(&mut ctx, &opts.adapt, churn, opts.adapt.max_cycles, &mut r)?;
+            let st = stage(&mut ctx, &opts.adapt, k, &mut rep)?;
             let c = coarsened(&lm, cont, s);
             stage_reports.push(Stage3 {
-                scale: s,
                 eps: Some(c.eps),
                 hmin: c.hmin,
                 band: Some(c.band),
-                start_vertices: start,
-                vertices: alive_points(&ctx.mesh),
-                peak_vertices: stages::peak(start, &r),
-                complexity: stages::complexity(&ctx.mesh, &ctx.metric),
-                passes: r.passes.len(),
-                seconds: stages::seconds_by_kind(&r),
+                ..st
             });
-            rep.absorb(&r);
-            rep.converged = r.converged;
         }
     } else {
         run_cycles(&mut ctx, &opts.adapt, &mut rep)?;
