@@ -71,6 +71,9 @@ fn q1_grad(v: &[f64; 8], xi: &[f64; 3], h: f64) -> DVec3 {
     })
 }
 
+/// The gradient of `U` at a face point: element corners, reference point, position.
+type FaceGradient<'a> = dyn Fn(&[u32; 8], &[f64; 3], DVec3) -> DVec3 + 'a;
+
 /// `Γ_j = ∫_{∂Ω_n} A ∇U · ν Θ_j da` over the faces no other element shares, with `A` from `Φ`
 /// (or the exact normal) and `∇U` from `grad(element, ξ, x)`, `gauss` points per face side.
 fn gamma(
@@ -79,7 +82,7 @@ fn gamma(
     phi: &[f64],
     exact_normal: bool,
     gauss: usize,
-    grad: &dyn Fn(&[u32; 8], &[f64; 3], DVec3) -> DVec3,
+    grad: &FaceGradient,
 ) -> Vec<f64> {
     let h = lat.h;
     let (pts, wts) = if gauss == 2 {
