@@ -56,7 +56,7 @@ impl Default for McfOptions {
             eps: 1e-3,
             delta: 1e-2,
             cg_rtol: 1e-6,
-            element_product: false,
+            element_product: true,
         }
     }
 }
@@ -245,14 +245,20 @@ pub fn rebuild_keeping<B: Band<Coord = C3>>(
     phi: &[f64],
     keep: Keep,
 ) -> Result<(NarrowBand<B>, Vec<f64>)> {
+    let t0 = cpu_seconds();
     // One pass over the old band's cells gives the crossed cells and their triangles.
     let l = level(lat, &nb.band, phi);
+    let t1 = cpu_seconds();
     let new: NarrowBand<B> = band_around(lat, &l.crossing_cells(), nb.j).map_err(|e| match e {
         Error::EmptyLevelSet(_) => Error::EmptyLevelSet(
             "the zero level vanished during the motion (no band cell is crossed)".into(),
         ),
         e => e,
     })?;
+    let t2 = cpu_seconds();
+    if std::env::var_os("RB2_TIMING").is_some() {
+        eprintln!("  level {:.3} band {:.3}", t1 - t0, t2 - t1);
+    }
     let d = extend_from_level(
         lat,
         &l,
