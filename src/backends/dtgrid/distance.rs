@@ -11,18 +11,23 @@
 //! to its chords (the chords of a convex surface lie inside it by `O(h²κ)`; measuring to them
 //! shifts the zero level by that much at every redistancing).
 
-use super::band::Band;
+use super::band::{Band, GridCoord};
 use super::lattice::{Lattice, C3};
-use super::gather::gather;
-use super::nbhd::{neighbourhoods, Nbhd, SLOT_SELF, WITHIN};
+use super::nbhd::{neighbourhoods, Nbhd, SHARED_CELL, SLOT_SELF, WITHIN};
 use super::surface::closest_on_triangle;
 pub use super::zero_level::zero_level_integral;
 pub(crate) use super::zero_level::{level, Level};
 use crate::geom::DVec3;
 use rayon::prelude::*;
 
-/// No triangle.
-pub(super) const NONE: u32 = u32::MAX;
+const NONE: u32 = u32::MAX;
+
+/// Seed flags (see [`propagate`]): the node's triangle is the nearest of a crossed cell it is a
+/// corner of (the corner in the low three bits).
+const FROM_CELL: u8 = 8;
+/// Seed flags: every triangle of the node's crossed cells but its own is farther than its own by
+/// more than the tie tolerance.
+const CLEAR: u8 = 16;
 
 /// Which values of the field are kept on the new band instead of the distance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,7 +44,7 @@ pub enum Keep {
 /// The triangles of the zero level with cheap lower bounds of the distance to each: its plane
 /// and the disc in it about the centroid that holds the triangle (one cache line per triangle,
 /// apart from the corners, so that a rejected candidate costs one load).
-pub(super) struct Tris<'a> {
+struct Tris<'a> {
     corners: &'a [[DVec3; 3]],
     bounds: Vec<Bound>,
 }
@@ -122,7 +127,7 @@ impl<'a> Tris<'a> {
 /// `NONE` skipped): ties within `tie` go to the triangle facing `p` most, then the lowest index.
 /// Each candidate comes with a tag (the slot of the neighbour proposing it), returned with the
 /// winner (`tag` for the current best).
-pub(super) fn nearest(
+fn nearest(
     tris: &Tris,
     p: DVec3,
     (mut bd, mut bt, mut btag): (f64, u32, u32),
@@ -167,8 +172,7 @@ pub(super) fn nearest(
 }
 
 /// Up to `layers` Jacobi passes in which every node (position `pos`) takes the nearest of its
-/// own triangle and its neighbours' (`nbr`), starting from `best` and `dist`, where the first
-/// pass visits only the nodes `first` (the others are known to hold their nearest triangle).
+/// own triangle and its neighbours' (`nbr`), starting from the seeds' `best` and `dist`.
 ///
 /// Only nodes with a neighbour that changed in the last pass are visited again (a list built
 /// from the changes, not a test of 27 flags per node), and only the triangles of those
@@ -177,9 +181,12 @@ pub(super) fn nearest(
 /// cannot win now. Nor is a changed neighbour's triangle a candidate when the neighbour took it
 /// from a node that is itself in this node's neighbourhood (each node keeps the slot of the
 /// neighbour its triangle came from): that node held it a pass earlier, so it was measured here
-/// then (or, by the same rule, before). With every node in `first` the states after every pass
-/// are those of full passes. A candidate is measured only when its lower bound can beat the best
-/// so far (the node's own triangle, whose distance is known, bounds the search from the start).
+/// then (or, by the same rule, before). In the first pass a seed flagged [`CLEAR`] skips the
+/// triangles its neighbours took from a crossed cell ([`FROM_CELL`], `seeds`) that it is a corner
+/// of too: it measured them when it was seeded, and they lost by more than the tie tolerance.
+/// The states after every pass are those of full passes. A candidate is measured only when its
+/// lower bound can beat the best so far (the node's own triangle, whose distance is known, bounds
+/// the search from the start).
 #[allow(clippy::too_many_arguments)]
 fn propagate(
     tris: &Tris,
@@ -187,11 +194,11 @@ fn propagate(
     pos: &(impl Fn(usize) -> DVec3 + Sync),
     layers: usize,
     tie: f64,
-    first: Vec<u32>,
+    seeds: &[u8],
     best: &mut [u32],
     dist: &mut [f64],
 ) {
-    let mut visit = first;
+    let mut visit: Vec<u32> = (0..nbr.len() as u32).collect();
     let mut mark = vec![false; nbr.len()];
     // The pass in which a node's triangle last changed (0: a seed's, or none).
     let mut stamp = vec![0u32; nbr.len()];
@@ -205,11 +212,19 @@ fn propagate(
             .par_iter()
             .map(|&i| {
                 let i = i as usize;
+                let clear = seeds[i] & CLEAR != 0;
                 let fresh = nbr[i]
                     .slots()
                     .filter(|&(slot, j)| {
                         let j = j as usize;
-                        pass == 1 || (s[j] == pass - 1 && WITHIN[slot as usize] >> f[j] & 1 == 0)
+                        if pass == 1 {
+                            let sj = seeds[j];
+                            !(clear
+                                && sj & FROM_CELL != 0
+                                && SHARED_CELL[slot as usize] >> (sj & 7) & 1 != 0)
+                        } else {
+                            s[j] == pass - 1 && WITHIN[slot as usize] >> f[j] & 1 == 0
+                        }
                     })
                     .map(|(slot, j)| (slot, b[j as usize]));
                 nearest(tris, pos(i), (dd[i], b[i], SLOT_SELF), tie, fresh)
@@ -242,6 +257,67 @@ fn propagate(
     }
 }
 
+/// The seeds of the propagation: per node of `coords` that is a corner of a crossed cell of
+/// `l`, the nearest triangle of its crossed cells and its distance (`NONE` and infinity
+/// elsewhere), whether it is such a corner, and its flags for [`propagate`].
+fn seeds(
+    lat: &Lattice,
+    l: &Level,
+    tris: &Tris,
+    coords: &[C3],
+    tie: f64,
+) -> (Vec<u32>, Vec<f64>, Vec<bool>, Vec<u8>) {
+    let mut best = vec![NONE; coords.len()];
+    let mut dist = vec![f64::INFINITY; coords.len()];
+    let mut seed = vec![false; coords.len()];
+    // Per seed: the corner of the cell of its triangle, and whether a tie came near (see
+    // `propagate`).
+    let mut flags = vec![0u8; coords.len()];
+    let mut tied = vec![false; coords.len()];
+    // One forward cursor per corner: the corners `c + offset` of the sorted crossed cells are
+    // sorted too, so they are found by merging, not by search.
+    let mut cur = [0usize; 8];
+    let mut tri = 0usize;
+    for (id, (c, _)) in l.cells.iter().enumerate() {
+        let start = tri;
+        while tri < l.tri_cell.len() && l.tri_cell[tri] == id as u32 {
+            tri += 1;
+        }
+        for (corner, cur) in cur.iter_mut().enumerate() {
+            let q = GridCoord::corner(*c, corner);
+            while *cur < coords.len() && coords[*cur] < q {
+                *cur += 1;
+            }
+            if *cur == coords.len() || coords[*cur] != q {
+                continue;
+            }
+            let i = *cur;
+            seed[i] = true;
+            let p = lat.pos(q);
+            for t in start as u32..tri as u32 {
+                if tris.beyond(t, p, dist[i] + tie) {
+                    continue;
+                }
+                let d = tris.distance(t, p);
+                if d < dist[i] {
+                    tied[i] |= d >= dist[i] - tie;
+                    dist[i] = d;
+                    best[i] = t;
+                    flags[i] = FROM_CELL | corner as u8;
+                } else {
+                    tied[i] |= d <= dist[i] + tie;
+                }
+            }
+        }
+    }
+    for (f, (&s, &t)) in flags.iter_mut().zip(seed.iter().zip(&tied)) {
+        if s && !t {
+            *f |= CLEAR;
+        }
+    }
+    (best, dist, seed, flags)
+}
+
 /// The values on `to` of the band field `phi` on `from`: the signed distance to the zero level of
 /// `phi` (the trilinear zero level in the cells it crosses), except where `keep` keeps `phi`.
 /// Signs come from `phi` where the node is in `from`, else from the side of the nearest
@@ -267,15 +343,6 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
     keep: Keep,
     max_dist: f64,
 ) -> Vec<f64> {
-    let tt = super::mcf::cpu_seconds();
-    let tick = |what: &str, t: &mut f64| {
-        if std::env::var_os("RB2_TIMING").is_some() {
-            let now = super::mcf::cpu_seconds();
-            eprintln!("  {what:12} {:.3}", now - *t);
-            *t = now;
-        }
-    };
-    let mut tt = tt;
     let coords: Vec<C3> = to.coords().collect();
     let old_coords: Vec<C3> = from.coords().collect();
     // The old value of every new node, by one merge of the two sorted lists.
@@ -289,24 +356,12 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
             old[i] = Some(phi[k]);
         }
     }
-    tick("merge", &mut tt);
-    // Every node takes the nearest triangle of the crossed cells around it (exact where it is
-    // certified).
+    // Seeds: the corners of the crossed cells take the nearest triangle of their cells.
     let tris = Tris::new(&l.tris);
-    tick("tris", &mut tt);
     let tie = 1e-12 * lat.h;
-    let g = gather(lat, l, &tris, &coords, tie);
-    let (mut best, mut dist, seed) = (g.best, g.dist, g.crossing);
-    tick("gather", &mut tt);
-    // Layers: the other nodes take the nearest of their neighbours' triangles (Jacobi passes).
+    let (mut best, mut dist, seed, flags) = seeds(lat, l, &tris, &coords, tie);
+    // Layers: every node takes the nearest of its neighbours' triangles (Jacobi passes).
     let nbr = neighbourhoods(&coords);
-    tick("nbhd", &mut tt);
-    let first: Vec<u32> = (0..coords.len() as u32)
-        .filter(|&i| !g.certified[i as usize])
-        .collect();
-    if std::env::var_os("RB2_TIMING").is_some() {
-        eprintln!("  uncertified {} of {}", first.len(), coords.len());
-    }
     let layers = (max_dist / lat.h).ceil() as usize + 1;
     propagate(
         &tris,
@@ -314,11 +369,10 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
         &|i| lat.pos(coords[i]),
         layers,
         tie,
-        first,
+        &flags,
         &mut best,
         &mut dist,
     );
-    tick("propagate", &mut tt);
     // The distance to the trilinear zero level from the nearest triangle, and the side of it
     // (needed only where the old field gives no sign).
     let (dist, side): (Vec<f64>, Vec<f64>) = (0..coords.len())
@@ -346,7 +400,6 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
     // origin would fold it into the slope by `b Σx / Σx²` — a factor wrong by `O(hκ)` that
     // changes from node to node and moved a shrinking sphere inward at every step (000 Table 2.2,
     // j = 4, τ = h²: 1.22e-3 → 7.07e-4 on 65³, see docs/dtgrid.md).
-    tick("project", &mut tt);
     let scale: Vec<f64> = if keep == Keep::Crossing {
         (0..coords.len())
             .into_par_iter()
@@ -384,7 +437,6 @@ pub(crate) fn extend_from_level<B: Band<Coord = C3>>(
     } else {
         vec![1.0; coords.len()]
     };
-    tick("scale", &mut tt);
     (0..coords.len())
         .map(|i| {
             let kept = match keep {
@@ -427,6 +479,7 @@ mod tests {
         let pos = |i: usize| lat.pos(coords[i]);
         let tie = 1e-12 * lat.h;
         let n = coords.len();
+        let no_flags = vec![0u8; n];
         for layers in [1, 2, 8] {
             let mut best = vec![NONE; n];
             let mut dist = vec![f64::INFINITY; n];
@@ -436,14 +489,7 @@ mod tests {
             }
             let (mut rb, mut rd) = (best.clone(), dist.clone());
             propagate(
-                &tris,
-                &nbr,
-                &pos,
-                layers,
-                tie,
-                (0..n as u32).collect(),
-                &mut best,
-                &mut dist,
+                &tris, &nbr, &pos, layers, tie, &no_flags, &mut best, &mut dist,
             );
             for _ in 0..layers {
                 let new: Vec<(f64, u32)> = (0..n)
@@ -465,43 +511,44 @@ mod tests {
         }
     }
 
-    /// The seeds of the closest-triangle propagation alone: the corners of the crossed cells take
-    /// the nearest triangle of their own cells (the start of the extension before the search
-    /// of `gather`), then full Jacobi passes.
-    fn propagated_from_own_cells(
-        lat: &Lattice,
-        l: &Level,
-        tris: &Tris,
-        coords: &[C3],
-        layers: usize,
-    ) -> (Vec<u32>, Vec<f64>) {
-        let tie = 1e-12 * lat.h;
-        let mut best = vec![NONE; coords.len()];
-        let mut dist = vec![f64::INFINITY; coords.len()];
-        for (i, &c) in coords.iter().enumerate() {
-            for (k, (cell, _)) in l.cells.iter().enumerate() {
-                if !(0..3).all(|a| (0..=1).contains(&(c[a] - cell[a]))) {
+    #[test]
+    fn triangle_bounds_never_exceed_the_distance() {
+        // The plane-and-disc bound of every triangle of a wavy sphere's zero level against the
+        // measured distance, from nodes around it and points just off the triangles: never
+        // above the distance, and it rejects most triangles at twice the distance.
+        let lat = Lattice::unit(41).unwrap();
+        let f = |p: DVec3| p.length() - 0.3 - 0.02 * (7.0 * p.x).sin() * (5.0 * p.y).cos();
+        let cross = crossing_cells_of_fn(&lat, &f).unwrap();
+        let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, 2).unwrap();
+        let phi: Vec<f64> = nb.band.coords().map(|c| f(lat.pos(c))).collect();
+        let l = level(&lat, &nb.band, &phi);
+        let tris = Tris::new(&l.tris);
+        let mut points: Vec<DVec3> = nb.band.coords().step_by(7).map(|c| lat.pos(c)).collect();
+        points.extend(l.tris.iter().step_by(5).flat_map(|[a, b, c]| {
+            let m = (*a + *b + *c) / 3.0;
+            [m, m + 1e-9 * lat.h * (*b - *a), *a + 1e-13 * (*c - *a)]
+        }));
+        let (mut tested, mut rejected) = (0usize, 0usize);
+        for (k, p) in points.iter().enumerate() {
+            for t in (k % 3..l.tris.len()).step_by(3) {
+                let d = tris.distance(t as u32, *p);
+                if d > 4.0 * lat.h {
                     continue;
                 }
-                let ts = (0..l.tris.len() as u32).filter(|&t| l.tri_cell[t as usize] == k as u32);
-                (dist[i], best[i], _) =
-                    nearest(tris, lat.pos(c), (dist[i], best[i], 0), tie, ts.map(|t| (0, t)));
+                assert!(!tris.beyond(t as u32, *p, d), "{p:?} {t} {d}");
+                tested += 1;
+                rejected += tris.beyond(t as u32, *p, 0.5 * d) as usize;
             }
         }
-        let nbr = neighbourhoods(coords);
-        let pos = |i: usize| lat.pos(coords[i]);
-        let all = (0..coords.len() as u32).collect();
-        propagate(tris, &nbr, &pos, layers, tie, all, &mut best, &mut dist);
-        (best, dist)
+        println!("{rejected} of {tested} rejected at half the distance");
+        assert!(tested > 100_000, "{tested}");
+        assert!(2 * rejected > tested, "{rejected} of {tested}");
     }
 
     #[test]
-    fn gather_is_exact_where_certified() {
-        // Against the nearest of all triangles, on an ellipsoid and a wavy sphere, bands of
-        // half-width 1 and 2: every certified node holds the nearest distance (to the tie
-        // tolerance), every node nearer than 2h is certified, and so is most of a band of
-        // half-width 1. After the passes every node where the propagation from the crossed
-        // cells' own triangles alone finds the nearest distance has it too.
+    fn seeds_skip_only_triangles_that_lose() {
+        // The first pass skips the triangles a seed measured in its own cells: the result is
+        // that of passes without the seed flags, on an ellipsoid and a wavy sphere.
         let shapes: [(usize, &(dyn Fn(DVec3) -> f64 + Sync)); 2] = [
             (29, &|p: DVec3| {
                 (p.x / 0.3).powi(2) + (p.y / 0.25).powi(2) + (p.z / 0.2).powi(2) - 1.0
@@ -511,65 +558,28 @@ mod tests {
             }),
         ];
         for (n, f) in shapes {
-            for j in [1, 2] {
-                let lat = Lattice::unit(n).unwrap();
-                let cross = crossing_cells_of_fn(&lat, &f).unwrap();
-                let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, j).unwrap();
-                let phi: Vec<f64> = nb.band.coords().map(|c| f(lat.pos(c))).collect();
-                let l = level(&lat, &nb.band, &phi);
-                let tris = Tris::new(&l.tris);
-                let coords: Vec<C3> = nb.band.coords().collect();
-                let tie = 1e-12 * lat.h;
-                let g = gather(&lat, &l, &tris, &coords, tie);
-                let exact: Vec<f64> = coords
-                    .par_iter()
-                    .map(|&c| {
-                        let p = lat.pos(c);
-                        (0..l.tris.len() as u32).fold(f64::INFINITY, |d, t| {
-                            if tris.beyond(t, p, d) {
-                                d
-                            } else {
-                                d.min(tris.distance(t, p))
-                            }
-                        })
-                    })
-                    .collect();
-                let mut certified = 0;
-                for (i, &c) in coords.iter().enumerate() {
-                    let corner = l
-                        .cells
-                        .iter()
-                        .any(|(q, _)| (0..3).all(|a| (0..=1).contains(&(c[a] - q[a]))));
-                    assert_eq!(g.crossing[i], corner, "{c:?}");
-                    if exact[i] < 2.0 * lat.h * (1.0 - 1e-6) {
-                        assert!(g.certified[i], "{c:?} at {}", exact[i] / lat.h);
-                    }
-                    if g.certified[i] {
-                        certified += 1;
-                        assert!((g.dist[i] - exact[i]).abs() <= tie, "{c:?}");
-                    }
-                }
-                let share = certified as f64 / coords.len() as f64;
-                assert!(j > 1 || share > 0.75, "{n}³: {share} certified");
-                let layers = 2 * j + 6;
-                let mut best = g.best.clone();
-                let mut dist = g.dist.clone();
-                let nbr = neighbourhoods(&coords);
-                let pos = |i: usize| lat.pos(coords[i]);
-                let first = (0..coords.len() as u32)
-                    .filter(|&i| !g.certified[i as usize])
-                    .collect();
-                propagate(&tris, &nbr, &pos, layers, tie, first, &mut best, &mut dist);
-                let (_, old) = propagated_from_own_cells(&lat, &l, &tris, &coords, layers);
-                for i in 0..coords.len() {
-                    if (old[i] - exact[i]).abs() <= tie {
-                        assert!((dist[i] - exact[i]).abs() <= tie, "{:?}", coords[i]);
-                    }
-                    assert!(dist[i] >= exact[i] - tie);
-                    if exact[i] < 2.0 * lat.h * (1.0 - 1e-6) {
-                        assert!((dist[i] - exact[i]).abs() <= tie);
-                    }
-                }
+            let lat = Lattice::unit(n).unwrap();
+            let cross = crossing_cells_of_fn(&lat, &f).unwrap();
+            let nb: NarrowBand<DtGrid<C3>> = band_around(&lat, &cross, 2).unwrap();
+            let phi: Vec<f64> = nb.band.coords().map(|c| f(lat.pos(c))).collect();
+            let l = level(&lat, &nb.band, &phi);
+            let tris = Tris::new(&l.tris);
+            let coords: Vec<C3> = nb.band.coords().collect();
+            let nbr = neighbourhoods(&coords);
+            let pos = |i: usize| lat.pos(coords[i]);
+            let tie = 1e-12 * lat.h;
+            let (best, dist, seed, flags) = seeds(&lat, &l, &tris, &coords, tie);
+            let clear = flags.iter().filter(|&&f| f & CLEAR != 0).count();
+            let seeded = seed.iter().filter(|&&s| s).count();
+            assert!(2 * clear > seeded, "{clear} of {seeded} seeds skip");
+            let no_flags = vec![0u8; coords.len()];
+            for layers in [1, 3, 8] {
+                let (mut b1, mut d1) = (best.clone(), dist.clone());
+                propagate(&tris, &nbr, &pos, layers, tie, &flags, &mut b1, &mut d1);
+                let (mut b2, mut d2) = (best.clone(), dist.clone());
+                propagate(&tris, &nbr, &pos, layers, tie, &no_flags, &mut b2, &mut d2);
+                assert_eq!(b1, b2, "{n}³, {layers} passes");
+                assert!(d1.iter().zip(&d2).all(|(a, b)| a.to_bits() == b.to_bits()));
             }
         }
     }

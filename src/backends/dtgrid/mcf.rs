@@ -40,10 +40,10 @@ pub struct McfOptions {
     /// The relative residual at which CG stops (relative to the residual of the initial guess,
     /// the last iterate).
     pub cg_rtol: f64,
-    /// Dirichlet solves apply `M + τ L` element by element ([`ElementOperator`]) instead of
-    /// assembling it: the same system up to the order of summation, and faster (see
-    /// `docs/dtgrid.md`), but rounding differences change the solves' last digits and, through
-    /// the rebuilds' discrete choices, Table 2.2's errors by up to about 10⁻⁴ relative.
+    /// Dirichlet solves apply `M + τ L` element by element ([`ElementOperator`], the default)
+    /// instead of assembling it: the same system up to the order of summation, faster and
+    /// smaller (see `docs/dtgrid.md`); the different rounding changes Table 2.2's errors by up
+    /// to about 10⁻⁴ relative against the assembled matrix (`false`).
     pub element_product: bool,
 }
 
@@ -245,20 +245,14 @@ pub fn rebuild_keeping<B: Band<Coord = C3>>(
     phi: &[f64],
     keep: Keep,
 ) -> Result<(NarrowBand<B>, Vec<f64>)> {
-    let t0 = cpu_seconds();
     // One pass over the old band's cells gives the crossed cells and their triangles.
     let l = level(lat, &nb.band, phi);
-    let t1 = cpu_seconds();
     let new: NarrowBand<B> = band_around(lat, &l.crossing_cells(), nb.j).map_err(|e| match e {
         Error::EmptyLevelSet(_) => Error::EmptyLevelSet(
             "the zero level vanished during the motion (no band cell is crossed)".into(),
         ),
         e => e,
     })?;
-    let t2 = cpu_seconds();
-    if std::env::var_os("RB2_TIMING").is_some() {
-        eprintln!("  level {:.3} band {:.3}", t1 - t0, t2 - t1);
-    }
     let d = extend_from_level(
         lat,
         &l,

@@ -18,7 +18,6 @@ mod band;
 pub mod distance;
 pub mod elemop;
 pub mod fem;
-mod gather;
 pub mod grid;
 pub mod heat;
 pub mod lattice;

@@ -81,6 +81,38 @@ const fn within() -> [u32; 27] {
     out
 }
 
+/// Per slot `s`: bit `c` is set when the cell that has the neighbour at slot `s` as its corner
+/// `c` (corner bits: 1 = x, 2 = y, 4 = z) also has the node itself as a corner.
+pub(super) const SHARED_CELL: [u8; 27] = shared_cell();
+
+const fn shared_cell() -> [u8; 27] {
+    let mut out = [0u8; 27];
+    let mut s = 0;
+    while s < 27 {
+        let o = offset(s);
+        let mut c = 0;
+        while c < 8 {
+            // The cell's lowest corner is `o − bits(c)` from the node; the node is a corner when
+            // `bits(c) − o` is 0 or 1 along every axis.
+            let mut inside = true;
+            let mut k = 0;
+            while k < 3 {
+                let v = ((c >> k) & 1) - o[k];
+                if v < 0 || v > 1 {
+                    inside = false;
+                }
+                k += 1;
+            }
+            if inside {
+                out[s] |= 1 << c;
+            }
+            c += 1;
+        }
+        s += 1;
+    }
+    out
+}
+
 /// The offset `(dx, dy, dz)` of slot `s`.
 const fn offset(s: usize) -> [i32; 3] {
     [
