@@ -119,18 +119,19 @@ fn mcf_with_inner_iterations_and_large_steps_converges_at_first_order() {
 
 #[test]
 fn mcf_element_product_takes_the_assembled_steps() {
-    // Dirichlet solves with M + τL applied element by element against the assembled matrix:
-    // the same system up to the order of summation. One step of the sphere r = 1/3 on 65³
-    // (j = 1, τ = h², inner iteration), then Table 2.2's run on 33³ (j = 2).
+    // Dirichlet solves with M + τL applied element by element (the default) against the
+    // assembled matrix: the same system up to the order of summation. One step of the sphere
+    // r = 1/3 on 65³ (j = 1, τ = h², inner iteration), then Table 2.2's run on 33³ (j = 2).
     use anisomesh::backends::dtgrid::lattice::Lattice;
     use anisomesh::backends::dtgrid::mcf::McfState;
     use anisomesh::backends::dtgrid::Band;
     let lat = Lattice::unit(65).unwrap();
     let start: McfState<B> = McfState::new(lat, 1, &|p| p.length() - 1.0 / 3.0).unwrap();
-    let o = McfOptions::default();
-    let oe = McfOptions {
-        element_product: true,
-        ..o
+    let oe = McfOptions::default();
+    assert!(oe.element_product);
+    let o = McfOptions {
+        element_product: false,
+        ..oe
     };
     let (mut a, mut e) = (start.clone(), start);
     let tau = lat.h * lat.h;
