@@ -11,6 +11,14 @@
 //!   the target metric, 1/50 for a continuation stage, whose mesh only has to be close to the
 //!   next stage's), instead of 1/2,000: the remaining changes are left to the final quality
 //!   sweep and the length polish, which follow.
+//!
+//! The mesh is renumbered along a Hilbert curve ([`Remesher::renumber`]) whenever it has grown
+//! by 30 % (10 % once a cycle stops splitting), and at the start of a cycle once the changes
+//! since the last renumbering reach a quarter of the vertex count: swaps and collapses put new
+//! tetrahedra in freed slots anywhere in the arrays, and the passes are bound by the memory
+//! latency of walking balls whose tetrahedra lie far apart (UGAWG cube-linear scaled to 10⁶
+//! vertices: 447 → 392 processor seconds, at 10⁵ 3–7 % less, the same conformity and
+//! quality).
 
 use std::time::Instant;
 
@@ -56,14 +64,20 @@ pub(super) fn cycles(
     rep: &mut AdaptReport,
 ) -> Result<()> {
     let mut renumbered_at = 0;
+    let changes = |rep: &AdaptReport| rep.splits + rep.collapses + rep.flips + rep.moves;
+    let mut changes_at = changes(rep);
     for _ in 0..max_cycles.min(opts.max_cycles) {
         rep.cycles += 1;
         let mut ns = 0;
         for pass in 0..MAX_SPLIT_PASSES {
             let nv = ctx.n_vertices();
-            if 10 * nv >= 13 * renumbered_at.max(1) || (ns == 0 && 10 * nv >= 11 * renumbered_at) {
+            if 10 * nv >= 13 * renumbered_at.max(1)
+                || (ns == 0 && 10 * nv >= 11 * renumbered_at)
+                || (pass == 0 && 4 * (changes(rep) - changes_at) >= nv)
+            {
                 ctx.renumber();
                 renumbered_at = ctx.n_vertices();
+                changes_at = changes(rep);
             }
             let n = record(ctx, PassKind::Split, opts, rep)?;
             ns += n;
