@@ -275,13 +275,13 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     let seen;
     let coarsening = Scale::default();
     let shape_metric;
-    let cap = Scale::new(f64::INFINITY);
-    let capped;
+    let floor = Scale::new(0.0);
+    let floored;
     let (source, shape): (MetricFn3<'_>, Option<&dyn Shape<DVec3>>) = match target {
         Target3::Metric(f) => {
-            let cap = &cap;
-            capped = move |p: DVec3| stages::capped(f(p), cap.get());
-            (&capped, None)
+            let floor = &floor;
+            floored = move |p: DVec3| stages::floored(f(p), floor.get());
+            (&floored, None)
         }
         Target3::Shape(s) => {
             lm.validate()?;
@@ -317,7 +317,7 @@ pub fn run3(target: Target3<'_>, start: Option<&Mesh3>, opts: &Run3Options) -> R
     if let Some(floors) = metric_stages.filter(|f| f.count > 0) {
         for k in (0..=floors.count).rev() {
             let h = floors.floor(k);
-            cap.set(1.0 / (h * h));
+            floor.set(h);
             refresh_metric(&mut ctx, source)?;
             let st = stage(&mut ctx, &opts.adapt, k, &mut rep)?;
             stage_reports.push(Stage3 {

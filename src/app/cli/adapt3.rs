@@ -70,10 +70,9 @@ pub fn run(
     out_dir: &Path,
 ) -> Result<()> {
     let (name, shape) = shape3(name, expr)?;
-    let opts = opts.clone();
     let a = match hgrad {
-        Some(beta) => run3_graded(shape.as_ref(), None, &opts, beta)?,
-        None => run3(Target3::Shape(shape.as_ref()), None, &opts)?,
+        Some(beta) => run3_graded(shape.as_ref(), None, opts, beta)?,
+        None => run3(Target3::Shape(shape.as_ref()), None, opts)?,
     };
     print_and_write(&a, &format!("{name}3d"), None, out_dir)
 }
@@ -132,23 +131,22 @@ pub fn run_files(
     hgrad: Option<f64>,
     out_dir: &Path,
 ) -> Result<()> {
-    let opts = opts.clone();
     let name = format!("{stem}_adapted");
     match sol {
         Sol3::Metric(m) => {
-            let a = run3_to_field(mesh, m, &opts, hgrad)?;
+            let a = run3_to_field(mesh, m, opts, hgrad)?;
             print_and_write(&a, &name, Some("metric read from file"), out_dir)
         }
         Sol3::Sizes(h) => {
             let m = h.iter().map(|&h| Sym3::iso(h)).collect();
-            let a = run3_to_field(mesh, m, &opts, hgrad)?;
+            let a = run3_to_field(mesh, m, opts, hgrad)?;
             print_and_write(&a, &name, Some("sizes read from file"), out_dir)
         }
         Sol3::LevelSet(u) => {
             let shape = DiscreteLevelSet3::new(&mesh.points, &mesh.tets, &u)?;
             let a = match hgrad {
-                Some(beta) => run3_graded(&shape, Some(mesh), &opts, beta)?,
-                None => run3(Target3::Shape(&shape), Some(mesh), &opts)?,
+                Some(beta) => run3_graded(&shape, Some(mesh), opts, beta)?,
+                None => run3(Target3::Shape(&shape), Some(mesh), opts)?,
             };
             print_and_write(
                 &a,

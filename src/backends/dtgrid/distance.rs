@@ -92,9 +92,14 @@ impl<'a> Tris<'a> {
         // the squared distance is at least the plane's squared distance plus the squared
         // distance from the foot of `p` to that disc.
         let s = b.normal.dot(p) - b.offset;
+        let lim2 = lim * lim;
+        // The plane alone decides most rejections, before the square root of the disc term.
+        if s * s * (1.0 - 1e-9) > lim2 {
+            return true;
+        }
         let foot = (p - s * b.normal - b.centre).length();
         let out = (foot - b.radius).max(0.0);
-        (s * s + out * out) * (1.0 - 1e-9) > lim * lim
+        (s * s + out * out) * (1.0 - 1e-9) > lim2
     }
 
     /// The closest point of triangle `t` to `p`.

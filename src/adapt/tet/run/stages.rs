@@ -12,7 +12,7 @@ use crate::adapt::options::PassKind;
 use crate::adapt::tet::Ctx;
 use crate::adapt::{AdaptReport, LevelSetMetric};
 use crate::mesh3::{signed_volume, EditMesh3};
-use crate::metric::Sym3;
+use crate::metric::{Sym3, SymTensor};
 
 /// How [`super::run3`] reaches a shape's metric from its start mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -117,11 +117,11 @@ impl Scale {
     }
 }
 
-/// `m` with its eigenvalues capped at `cap` (its sizes at least `1/sqrt(cap)`); `m` itself
-/// when `cap` is infinite.
-pub(super) fn capped(m: Sym3, cap: f64) -> Sym3 {
-    if cap.is_finite() {
-        m.map_eigen(|l| l.min(cap))
+/// `m` with every size raised to at least `floor` ([`Sym3::bound`] with no upper size and no
+/// anisotropy limit); `m` itself when `floor` is 0.
+pub(super) fn floored(m: Sym3, floor: f64) -> Sym3 {
+    if floor > 0.0 {
+        m.bound(floor, f64::INFINITY, f64::INFINITY)
     } else {
         m
     }
@@ -154,10 +154,7 @@ impl SizeFloors {
     pub(super) fn new(mesh: &crate::mesh3::Mesh3, metric: &[Sym3]) -> SizeFloors {
         let smallest = metric
             .iter()
-            .map(|m| {
-                let (l, _) = m.eigen();
-                1.0 / l.iter().fold(0.0f64, |a, &x| a.max(x)).sqrt()
-            })
+            .map(|m| SymTensor::sizes(m).0[2])
             .fold(f64::INFINITY, f64::min);
         let mut longest = 0.0f64;
         for t in &mesh.tets {
