@@ -11,6 +11,7 @@
 //! transparent flux at `O(τ²)` (000 §2.2 bounds it by `O(τ)` for `U_approx = U^k`).
 
 use super::band::Band;
+use super::ghost::GhostRows;
 use super::fem::{assemble, elements, transparent_vector, BandMatrices, Element, Weight};
 use super::lattice::{band_around, crossing_cells_of_fn, Lattice, NarrowBand, C3};
 use super::scheme::{solve_all, system_matrix, Bc};
@@ -127,14 +128,30 @@ pub fn band_heat_steps(
     steps: usize,
     u: &mut [f64],
 ) -> Result<()> {
-    if bc == Bc::Dirichlet {
+    if matches!(bc, Bc::Dirichlet | Bc::Extrapolated) {
         return Err(Error::InvalidInput(
-            "the heat problem takes natural or transparent conditions".into(),
+            "the heat problem takes natural or transparent conditions here".into(),
         ));
     }
     let n = u.len();
-    let w = Weight::Heat;
-    let flux = |v: &[f64]| transparent_vector(lat, el, n, phi, v, w);
+    let flux = |v: &[f64]| transparent_vector(lat, el, n, phi, v, Weight::Heat);
+    let flux = (bc == Bc::Transparent).then_some(&flux as &dyn Fn(&[f64]) -> Vec<f64>);
+    steps_with(m, flux, time, tau, steps, u)
+}
+
+/// The time steps of [`band_heat_steps`] with the lagged boundary vector `flux` (`None`: natural
+/// conditions): the transparent `Γ` of 000 (2.9) or the outside cells' part of the complete
+/// boundary rows ([`GhostRows::vector`]).
+/// Errors: solver errors from [`solve_all`].
+fn steps_with(
+    m: &BandMatrices,
+    flux: Option<&dyn Fn(&[f64]) -> Vec<f64>>,
+    time: TimeScheme,
+    tau: f64,
+    steps: usize,
+    u: &mut [f64],
+) -> Result<()> {
+    let n = u.len();
     let mut b = vec![0.0; n];
     if time == TimeScheme::Euler {
         let a = system_matrix(m, tau)?;
@@ -143,7 +160,7 @@ pub fn band_heat_steps(
                 .zip(&m.mass)
                 .zip(u.iter())
                 .for_each(|((b, m), u)| *b = m * u);
-            if bc == Bc::Transparent {
+            if let Some(flux) = flux {
                 let g = flux(u);
                 b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
             }
@@ -164,7 +181,7 @@ pub fn band_heat_steps(
             .zip(&m.mass)
             .zip(u.iter().zip(&lu))
             .for_each(|((b, m), (u, lu))| *b = m * u - 0.5 * tau * lu);
-        if bc == Bc::Transparent {
+        if let Some(flux) = flux {
             let g = flux(u);
             b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
         }
@@ -182,7 +199,7 @@ pub fn band_heat_steps(
             .iter_mut()
             .zip(u.iter().zip(&prev))
             .for_each(|(g, (u, p))| *g = 2.0 * u - p);
-        if bc == Bc::Transparent {
+        if let Some(flux) = flux {
             let g = flux(&guess);
             b.iter_mut().zip(&g).for_each(|(b, g)| *b += t2 * g);
         }
@@ -222,8 +239,15 @@ pub fn sphere_heat<B: Band<Coord = C3>>(o: &HeatOptions) -> Result<HeatResult> {
     let mut u: Vec<f64> = nb.band.coords().map(|c| y(lat.pos(c))).collect();
     let (steps, tau) = step_count(o.tau.unwrap_or(lat.h * lat.h), o.t_end)?;
     let el = elements(&nb);
-    let m = assemble(&lat, &el, n, &phi, Weight::Heat)?;
-    band_heat_steps(&lat, &el, &phi, &m, o.bc, o.time, tau, steps, &mut u)?;
+    let mut m = assemble(&lat, &el, n, &phi, Weight::Heat)?;
+    if o.bc == Bc::Extrapolated {
+        let ghost = GhostRows::new(&lat, &nb, &phi, Weight::Heat)?;
+        m.mass.iter_mut().zip(&ghost.mass).for_each(|(m, g)| *m += g);
+        let flux = |v: &[f64]| ghost.vector(v);
+        steps_with(&m, Some(&flux), o.time, tau, steps, &mut u)?;
+    } else {
+        band_heat_steps(&lat, &el, &phi, &m, o.bc, o.time, tau, steps, &mut u)?;
+    }
     let z = zero_level(&lat, &nb.band, &phi);
     let decay = (-6.0 * o.t_end / (r * r)).exp();
     let e2 = surface_integral(&lat, &nb.band, &z, &u, |x, ux| (ux - decay * y(x)).powi(2));

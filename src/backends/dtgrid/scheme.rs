@@ -15,6 +15,9 @@ pub enum Bc {
     Natural,
     /// Transparent Neumann conditions: the boundary flux of the last step added (000 (2.9)–(2.11)).
     Transparent,
+    /// The heat equation's boundary rows completed by the cells outside the band, with values
+    /// extrapolated linearly along the normals ([`super::ghost`]); heat problems only.
+    Extrapolated,
     /// Dirichlet values on the boundary layer (000 (2.12)), with the nested inner iteration of
     /// 000 §2.4 where the caller asks for more than one solve per step.
     Dirichlet,
@@ -27,6 +30,7 @@ impl Bc {
             Bc::Natural => "natural",
             Bc::Transparent => "transparent",
             Bc::Dirichlet => "dirichlet",
+            Bc::Extrapolated => "extrapolated",
         }
     }
 
@@ -37,8 +41,9 @@ impl Bc {
             "natural" => Ok(Bc::Natural),
             "transparent" => Ok(Bc::Transparent),
             "dirichlet" => Ok(Bc::Dirichlet),
+            "extrapolated" => Ok(Bc::Extrapolated),
             _ => Err(Error::InvalidInput(format!(
-                "boundary condition {s:?} (natural, transparent or dirichlet)"
+                "boundary condition {s:?} (natural, transparent, extrapolated or dirichlet)"
             ))),
         }
     }

@@ -198,6 +198,12 @@ impl PlaneMcf {
                     solve_dirichlet(&a, &b, &fixed, &mut x)?
                 }
                 Bc::Natural => solve_all(&a, &b, &mut x)?,
+                Bc::Extrapolated => {
+                    return Err(Error::InvalidInput(
+                        "mean curvature motion takes natural, transparent or Dirichlet conditions"
+                            .into(),
+                    ))
+                }
                 Bc::Transparent => {
                     let g = transparent_vector(&plane, &el, n, &phik, &approx, w);
                     b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
