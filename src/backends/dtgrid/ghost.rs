@@ -29,6 +29,7 @@ use super::fem::{element_mass, element_stiffness, Weight};
 use super::lattice::{Lattice, NarrowBand, C3};
 use crate::error::{Error, Result};
 use crate::fem::q1::{shape, shape_grad, Q1};
+use crate::fem::Csr;
 use crate::geom::DVec3;
 
 /// A corner of an outside cell: a band node or a ghost node (indices into their lists).
@@ -51,6 +52,8 @@ pub struct GhostRows {
     terms: Vec<(u32, f64)>,
     /// The lumped mass of the outside cells per band node (zero at interior nodes).
     pub mass: Vec<f64>,
+    /// The ghost nodes' coordinates, sorted.
+    nodes: Vec<C3>,
 }
 
 /// The corner `q` of the cell with lowest corner `c` (bit `a` of `q` along axis `a`).
@@ -78,13 +81,26 @@ fn cell_at<B: Band<Coord = C3>>(lat: &Lattice, band: &B, x: DVec3) -> Option<([u
 
 impl GhostRows {
     /// The outside cells of the band `nb` with the weights `w` of the band field `phi`.
-    /// Errors: [`Error::InvalidInput`] when an outside cell leaves the grid or a ghost node has
-    /// no band cells along its inward normal (a band thinner than three cells).
+    /// Ghost nodes may lie outside the grid (they are only positions).
+    /// Error: [`Error::InvalidInput`] when a ghost node has no band cells to extrapolate from
+    /// (see [`extrapolation`]).
     pub fn new<B: Band<Coord = C3>>(
         lat: &Lattice,
         nb: &NarrowBand<B>,
         phi: &[f64],
         w: Weight,
+    ) -> Result<GhostRows> {
+        Self::new_with(lat, nb, phi, w, None)
+    }
+
+    /// [`GhostRows::new`] with `Φ` on the ghost nodes from `ghost_phi` instead of extrapolated.
+    /// Error: as [`GhostRows::new`].
+    pub fn new_with<B: Band<Coord = C3>>(
+        lat: &Lattice,
+        nb: &NarrowBand<B>,
+        phi: &[f64],
+        w: Weight,
+        ghost_phi: Option<&dyn Fn(DVec3) -> f64>,
     ) -> Result<GhostRows> {
         let n = nb.band.len();
         let h = lat.h;
@@ -107,14 +123,6 @@ impl GhostRows {
         }
         lows.sort_unstable();
         lows.dedup();
-        if let Some(c) = lows
-            .iter()
-            .find(|&&c| !lat.contains(c) || !lat.contains(corner(c, 7)))
-        {
-            return Err(Error::InvalidInput(format!(
-                "the cells outside the band leave the grid at {c:?}"
-            )));
-        }
         let mut ghosts: Vec<C3> = lows
             .iter()
             .flat_map(|&c| (0..8).map(move |q| corner(c, q)))
@@ -146,8 +154,12 @@ impl GhostRows {
             start,
             terms,
             mass: vec![0.0; n],
+            nodes: ghosts,
         };
-        let phi_ghost = rows.ghost_values(phi);
+        let phi_ghost = match ghost_phi {
+            Some(f) => rows.nodes.iter().map(|&c| f(lat.pos(c))).collect(),
+            None => rows.ghost_values(phi),
+        };
         let q1 = Q1::new(3, 2)?;
         let mut stiff = Vec::with_capacity(rows.cells.len());
         for cell in &rows.cells {
@@ -171,6 +183,11 @@ impl GhostRows {
         (self.cells.len(), self.start.len() - 1)
     }
 
+    /// The ghost nodes' grid coordinates (they may lie outside the grid).
+    pub fn ghost_nodes(&self) -> &[C3] {
+        &self.nodes
+    }
+
     /// The ghost values of the band field `u` (linear extrapolation along the inward normal).
     pub fn ghost_values(&self, u: &[f64]) -> Vec<f64> {
         self.start
@@ -184,13 +201,48 @@ impl GhostRows {
             .collect()
     }
 
+    /// The band stiffness `stiff` completed by the outside cells: row `i` gains
+    /// `Σ_{outside e ∋ i} a_e(·, Θ_i)` with the ghost values written as their extrapolation from
+    /// band nodes, so that `(L_full U)_i = (stiff U)_i − G_i(U)` (not symmetric).
+    /// Error: only for a band node index out of range.
+    pub fn complete(&self, stiff: &Csr) -> Result<Csr> {
+        let mut t: Vec<(u32, u32, f64)> = Vec::with_capacity(stiff.nnz() + 64 * self.cells.len());
+        for i in 0..stiff.n {
+            for p in stiff.row_ptr[i]..stiff.row_ptr[i + 1] {
+                t.push((i as u32, stiff.col[p], stiff.val[p]));
+            }
+        }
+        for (cell, ke) in self.cells.iter().zip(&self.stiff) {
+            for (a, ca) in cell.iter().enumerate() {
+                let Corner::Band(i) = *ca else { continue };
+                for (b, cb) in cell.iter().enumerate() {
+                    let k = ke[a * 8 + b];
+                    match *cb {
+                        Corner::Band(j) => t.push((i, j, k)),
+                        Corner::Ghost(g) => {
+                            let g = g as usize;
+                            for &(j, c) in &self.terms[self.start[g]..self.start[g + 1]] {
+                                t.push((i, j, k * c));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Csr::from_triplets(stiff.n, &t)
+    }
+
     /// `G_i = −Σ_{outside e ∋ i} a_e(V, Θ_i)` for the band field `u` completed by its ghost
     /// values (zero at interior nodes).
     pub fn vector(&self, u: &[f64]) -> Vec<f64> {
-        let ghost = self.ghost_values(u);
+        self.vector_with(u, &self.ghost_values(u))
+    }
+
+    /// [`GhostRows::vector`] with the given ghost values (one per [`GhostRows::ghost_nodes`]).
+    pub fn vector_with(&self, u: &[f64], ghost: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; u.len()];
         for (cell, ke) in self.cells.iter().zip(&self.stiff) {
-            let v = corner_values(cell, u, &ghost);
+            let v = corner_values(cell, u, ghost);
             for (a, c) in cell.iter().enumerate() {
                 if let Corner::Band(i) = c {
                     let row: f64 = (0..8).map(|b| ke[a * 8 + b] * v[b]).sum();
@@ -214,9 +266,10 @@ fn corner_values(cell: &[Corner; 8], u: &[f64], ghost: &[f64]) -> [f64; 8] {
 const DELTAS: [f64; 9] = [1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 2.75, 3.0];
 
 /// Appends the extrapolation terms of the ghost node `g`: `2 I_h(x + δν) − I_h(x + 2δν)` with
-/// `ν` the inward normal (from the Q1 gradient of `Φ` one cell inside) and `δ = h` (or `1.5 h`,
-/// `2 h` when the points are not in band cells).
-/// Error: [`Error::InvalidInput`] when no `δ` gives two points in band cells.
+/// `ν` the inward normal (the Q1 gradient of `Φ` one cell inside, oriented away from the zero
+/// level) and the smallest `δ` of [`DELTAS`] that puts both points in band cells; where no `δ`
+/// does, the grid directions closest to `ν` are tried in turn.
+/// Error: [`Error::InvalidInput`] when no direction gives two points in band cells.
 fn extrapolation<B: Band<Coord = C3>>(
     lat: &Lattice,
     nb: &NarrowBand<B>,
@@ -248,19 +301,49 @@ fn extrapolation<B: Band<Coord = C3>>(
             dir = n;
         }
     }
-    for delta in DELTAS {
-        let p1 = cell_at(lat, &nb.band, x + dir * (delta * h));
-        let p2 = cell_at(lat, &nb.band, x + dir * (2.0 * delta * h));
-        if let (Some((i1, x1)), Some((i2, x2))) = (p1, p2) {
-            for k in 0..8 {
-                terms.push((i1[k] as u32, 2.0 * shape(3, k, &x1)));
-                terms.push((i2[k] as u32, -shape(3, k, &x2)));
+    // The grid directions into the band, closest to the normal first.
+    let mut dirs: Vec<C3> = (0..27)
+        .filter(|&q| q != 13)
+        .map(|q| [q % 3 - 1, (q / 3) % 3 - 1, q / 9 - 1])
+        .collect();
+    let unit = |o: C3| DVec3::new(o[0] as f64, o[1] as f64, o[2] as f64).normalize();
+    dirs.sort_by(|a, b| unit(*b).dot(dir).total_cmp(&unit(*a).dot(dir)));
+    let mode = std::env::var("GHOST_EXTRAP").unwrap_or_default();
+    let along = |o: C3, k: i32| nb.band.index([g[0] + k * o[0], g[1] + k * o[1], g[2] + k * o[2]]);
+    if mode != "normal1" {
+        // Nodal values along a grid direction: quadratic (3, −3, 1), else linear (2, −1).
+        let stencils: &[&[f64]] = if mode == "grid1" {
+            &[&[2.0, -1.0]]
+        } else {
+            &[&[3.0, -3.0, 1.0], &[2.0, -1.0]]
+        };
+        for st in stencils {
+            for &o in &dirs {
+                let nodes: Option<Vec<usize>> =
+                    (1..=st.len() as i32).map(|k| along(o, k)).collect();
+                if let Some(nodes) = nodes {
+                    terms.extend(nodes.iter().zip(st.iter()).map(|(&i, &c)| (i as u32, c)));
+                    return Ok(());
+                }
             }
-            return Ok(());
+        }
+    }
+    let dirs: Vec<DVec3> = dirs.into_iter().map(unit).collect();
+    for dir in std::iter::once(dir).chain(dirs) {
+        for delta in DELTAS {
+            let p1 = cell_at(lat, &nb.band, x + dir * (delta * h));
+            let p2 = cell_at(lat, &nb.band, x + dir * (2.0 * delta * h));
+            if let (Some((i1, x1)), Some((i2, x2))) = (p1, p2) {
+                for k in 0..8 {
+                    terms.push((i1[k] as u32, 2.0 * shape(3, k, &x1)));
+                    terms.push((i2[k] as u32, -shape(3, k, &x2)));
+                }
+                return Ok(());
+            }
         }
     }
     Err(Error::InvalidInput(format!(
-        "ghost node {g:?}: no band cells along the inward normal (band too thin)"
+        "ghost node {g:?}: no two band cells along any direction into the band (band too thin)"
     )))
 }
 

@@ -14,7 +14,8 @@ use super::band::Band;
 use super::ghost::GhostRows;
 use super::fem::{assemble, elements, transparent_vector, BandMatrices, Element, Weight};
 use super::lattice::{band_around, crossing_cells_of_fn, Lattice, NarrowBand, C3};
-use super::scheme::{solve_all, system_matrix, Bc};
+use super::scheme::{solve_all, solve_general, system_matrix, Bc};
+use crate::fem::Csr;
 use super::surface::{surface_integral, zero_level};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
@@ -136,13 +137,14 @@ pub fn band_heat_steps(
     let n = u.len();
     let flux = |v: &[f64]| transparent_vector(lat, el, n, phi, v, Weight::Heat);
     let flux = (bc == Bc::Transparent).then_some(&flux as &dyn Fn(&[f64]) -> Vec<f64>);
-    steps_with(m, flux, time, tau, steps, u)
+    steps_with(m, flux, time, tau, steps, u, solve_all)
 }
 
 /// The time steps of [`band_heat_steps`] with the lagged boundary vector `flux` (`None`: natural
 /// conditions): the transparent `Γ` of 000 (2.9) or the outside cells' part of the complete
 /// boundary rows ([`GhostRows::vector`]).
 /// Errors: solver errors from [`solve_all`].
+#[allow(clippy::too_many_arguments)]
 fn steps_with(
     m: &BandMatrices,
     flux: Option<&dyn Fn(&[f64]) -> Vec<f64>>,
@@ -150,6 +152,7 @@ fn steps_with(
     tau: f64,
     steps: usize,
     u: &mut [f64],
+    solve: fn(&Csr, &[f64], &mut [f64]) -> Result<usize>,
 ) -> Result<()> {
     let n = u.len();
     let mut b = vec![0.0; n];
@@ -164,7 +167,7 @@ fn steps_with(
                 let g = flux(u);
                 b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
             }
-            solve_all(&a, &b, u)?;
+            solve(&a, &b, u)?;
         }
         return Ok(());
     }
@@ -185,7 +188,7 @@ fn steps_with(
             let g = flux(u);
             b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
         }
-        solve_all(&a, &b, u)?;
+        solve(&a, &b, u)?;
     }
     let t2 = 2.0 * tau / 3.0;
     let a = system_matrix(m, t2)?;
@@ -205,7 +208,7 @@ fn steps_with(
         }
         prev.copy_from_slice(u);
         u.copy_from_slice(&guess);
-        solve_all(&a, &b, u)?;
+        solve(&a, &b, u)?;
     }
     Ok(())
 }
@@ -243,8 +246,13 @@ pub fn sphere_heat<B: Band<Coord = C3>>(o: &HeatOptions) -> Result<HeatResult> {
     if o.bc == Bc::Extrapolated {
         let ghost = GhostRows::new(&lat, &nb, &phi, Weight::Heat)?;
         m.mass.iter_mut().zip(&ghost.mass).for_each(|(m, g)| *m += g);
-        let flux = |v: &[f64]| ghost.vector(v);
-        steps_with(&m, Some(&flux), o.time, tau, steps, &mut u)?;
+        if std::env::var("GHOST_LAGGED").is_ok() {
+            let flux = |v: &[f64]| ghost.vector(v);
+            steps_with(&m, Some(&flux), o.time, tau, steps, &mut u, solve_all)?;
+        } else {
+            m.stiff = ghost.complete(&m.stiff)?;
+            steps_with(&m, None, o.time, tau, steps, &mut u, solve_general)?;
+        }
     } else {
         band_heat_steps(&lat, &el, &phi, &m, o.bc, o.time, tau, steps, &mut u)?;
     }
