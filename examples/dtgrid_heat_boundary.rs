@@ -21,10 +21,10 @@
 //! compares `transparent` and `exact-boundary` at `τ = 1e-4` on 17³ and 33³ (seconds).
 
 use anisomesh::backends::dtgrid::fem::{assemble, elements, transparent_vector, Element, Weight};
+use anisomesh::backends::dtgrid::ghost::GhostRows;
 use anisomesh::backends::dtgrid::lattice::{
     band_around, crossing_cells_of_fn, Lattice, NarrowBand, C3,
 };
-use anisomesh::backends::dtgrid::ghost::GhostRows;
 use anisomesh::backends::dtgrid::scheme::{
     solve_all, solve_dirichlet, solve_general, system_matrix,
 };
@@ -274,7 +274,11 @@ fn run(variant: &str, n: usize, tau: f64) -> Result<(f64, f64, f64)> {
             "exact-normal" => gamma(&lat, &el, &phi, true, 2, &discrete),
             "gauss3" => gamma(&lat, &el, &phi, false, 3, &discrete),
             "ghost-exact" => ghost.as_ref().map_or(vec![0.0; nn], |g| {
-                let ex: Vec<f64> = g.ghost_nodes().iter().map(|&c| exact(lat.pos(c), t)).collect();
+                let ex: Vec<f64> = g
+                    .ghost_nodes()
+                    .iter()
+                    .map(|&c| exact(lat.pos(c), t))
+                    .collect();
                 g.vector_with(v, &ex)
             }),
             _ if dirichlet || ghost.is_some() => vec![0.0; nn],

@@ -67,7 +67,11 @@ fn corner(c: C3, q: usize) -> C3 {
 
 /// The band cell containing `x` (all 8 corners band nodes) as its corner indices and the
 /// reference point of `x` in it; `None` when a corner is not in the band.
-fn cell_at<B: Band<Coord = C3>>(lat: &Lattice, band: &B, x: DVec3) -> Option<([usize; 8], [f64; 3])> {
+fn cell_at<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    band: &B,
+    x: DVec3,
+) -> Option<([usize; 8], [f64; 3])> {
     let rel = (x - DVec3::splat(lat.lo)) / lat.h;
     let c = [rel.x.floor(), rel.y.floor(), rel.z.floor()];
     let xi = [rel.x - c[0], rel.y - c[1], rel.z - c[2]];
@@ -291,7 +295,9 @@ fn extrapolation<B: Band<Coord = C3>>(
     }
     let d0 = d0.normalize_or_zero();
     let mut dir = d0;
-    let inside = DELTAS.iter().find_map(|&d| cell_at(lat, &nb.band, x + d0 * (d * h)));
+    let inside = DELTAS
+        .iter()
+        .find_map(|&d| cell_at(lat, &nb.band, x + d0 * (d * h)));
     if let Some((idx, xi)) = inside {
         let grad = (0..8).fold(DVec3::ZERO, |s, k| {
             s + DVec3::from_array(shape_grad(3, k, &xi)) * (phi[idx[k]] / h)
@@ -309,7 +315,10 @@ fn extrapolation<B: Band<Coord = C3>>(
     let unit = |o: C3| DVec3::new(o[0] as f64, o[1] as f64, o[2] as f64).normalize();
     dirs.sort_by(|a, b| unit(*b).dot(dir).total_cmp(&unit(*a).dot(dir)));
     let mode = std::env::var("GHOST_EXTRAP").unwrap_or_default();
-    let along = |o: C3, k: i32| nb.band.index([g[0] + k * o[0], g[1] + k * o[1], g[2] + k * o[2]]);
+    let along = |o: C3, k: i32| {
+        nb.band
+            .index([g[0] + k * o[0], g[1] + k * o[1], g[2] + k * o[2]])
+    };
     if mode != "normal1" {
         // Nodal values along a grid direction: quadratic (3, −3, 1), else linear (2, −1).
         let stencils: &[&[f64]] = if mode == "grid1" {
@@ -365,20 +374,22 @@ mod tests {
         let ghost = GhostRows::new(&lat, &nb, &phi, Weight::Heat).unwrap();
         let (cells, nodes) = ghost.counts();
         assert!(cells > 0 && nodes > 0);
-        // Linear fields are extrapolated exactly.
+        // Linear fields are extrapolated exactly, quadratic ones wherever three nodes line up.
         let lin = |p: DVec3| 0.3 + p.x - 2.0 * p.y + 0.5 * p.z;
+        let quad = |p: DVec3| lin(p) + p.x * p.y - 3.0 * p.z * p.z;
         let u: Vec<f64> = nb.band.coords().map(|c| lin(lat.pos(c))).collect();
-        let gv = ghost.ghost_values(&u);
-        let mut lows = Vec::new();
-        for c in nb.band.coords() {
-            for q in 0..27 {
-                let x = [c[0] + q % 3 - 1, c[1] + (q / 3) % 3 - 1, c[2] + q / 9 - 1];
-                if nb.band.index(x).is_none() {
-                    lows.push(x);
-                }
-            }
+        let uq: Vec<f64> = nb.band.coords().map(|c| quad(lat.pos(c))).collect();
+        let (gl, gq) = (ghost.ghost_values(&u), ghost.ghost_values(&uq));
+        let mut exact_quadratic = 0;
+        for (k, &c) in ghost.ghost_nodes().iter().enumerate() {
+            let x = lat.pos(c);
+            assert!((gl[k] - lin(x)).abs() < 1e-12, "{c:?}");
+            exact_quadratic += usize::from((gq[k] - quad(x)).abs() < 1e-12);
         }
-        assert!(gv.iter().all(|v| v.is_finite()));
+        assert!(
+            exact_quadratic * 10 > 9 * nodes,
+            "{exact_quadratic} of {nodes}"
+        );
         // Constants have no outside flux; the mass goes to boundary nodes only.
         let ones = vec![1.0; n];
         assert!(ghost.vector(&ones).iter().all(|v| v.abs() < 1e-14));

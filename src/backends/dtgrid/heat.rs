@@ -11,13 +11,13 @@
 //! transparent flux at `O(τ²)` (000 §2.2 bounds it by `O(τ)` for `U_approx = U^k`).
 
 use super::band::Band;
-use super::ghost::GhostRows;
 use super::fem::{assemble, elements, transparent_vector, BandMatrices, Element, Weight};
+use super::ghost::GhostRows;
 use super::lattice::{band_around, crossing_cells_of_fn, Lattice, NarrowBand, C3};
 use super::scheme::{solve_all, solve_general, system_matrix, Bc};
-use crate::fem::Csr;
 use super::surface::{surface_integral, zero_level};
 use crate::error::{Error, Result};
+use crate::fem::Csr;
 use crate::geom::DVec3;
 
 /// The time discretisation of the band heat equation.
@@ -213,6 +213,38 @@ fn steps_with(
     Ok(())
 }
 
+/// Assembles the heat matrices of the band `nb` for the band field `phi` and advances `u` by
+/// `steps` steps of `tau` under natural, transparent (000 (2.9)) or extrapolated conditions
+/// ([`GhostRows`]: the boundary rows completed by the cells outside the band, solved implicitly
+/// by BiCGStab since the completed matrix is not symmetric).
+/// Errors: [`Error::InvalidInput`] for Dirichlet conditions or a band too thin for the ghost
+/// extrapolation; solver errors.
+#[allow(clippy::too_many_arguments)]
+pub fn heat_steps<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    nb: &NarrowBand<B>,
+    phi: &[f64],
+    bc: Bc,
+    time: TimeScheme,
+    tau: f64,
+    steps: usize,
+    u: &mut [f64],
+) -> Result<()> {
+    let n = nb.band.len();
+    let el = elements(nb);
+    let mut m = assemble(lat, &el, n, phi, Weight::Heat)?;
+    if bc != Bc::Extrapolated {
+        return band_heat_steps(lat, &el, phi, &m, bc, time, tau, steps, u);
+    }
+    let ghost = GhostRows::new(lat, nb, phi, Weight::Heat)?;
+    m.mass
+        .iter_mut()
+        .zip(&ghost.mass)
+        .for_each(|(m, g)| *m += g);
+    m.stiff = ghost.complete(&m.stiff)?;
+    steps_with(&m, None, time, tau, steps, u, solve_general)
+}
+
 /// Runs the heat problem on a band stored as `B`.
 /// Errors: [`Error::InvalidInput`] for Dirichlet conditions, a non-positive time or a band that
 /// does not fit; solver errors from [`solve_all`].
@@ -241,21 +273,7 @@ pub fn sphere_heat<B: Band<Coord = C3>>(o: &HeatOptions) -> Result<HeatResult> {
     };
     let mut u: Vec<f64> = nb.band.coords().map(|c| y(lat.pos(c))).collect();
     let (steps, tau) = step_count(o.tau.unwrap_or(lat.h * lat.h), o.t_end)?;
-    let el = elements(&nb);
-    let mut m = assemble(&lat, &el, n, &phi, Weight::Heat)?;
-    if o.bc == Bc::Extrapolated {
-        let ghost = GhostRows::new(&lat, &nb, &phi, Weight::Heat)?;
-        m.mass.iter_mut().zip(&ghost.mass).for_each(|(m, g)| *m += g);
-        if std::env::var("GHOST_LAGGED").is_ok() {
-            let flux = |v: &[f64]| ghost.vector(v);
-            steps_with(&m, Some(&flux), o.time, tau, steps, &mut u, solve_all)?;
-        } else {
-            m.stiff = ghost.complete(&m.stiff)?;
-            steps_with(&m, None, o.time, tau, steps, &mut u, solve_general)?;
-        }
-    } else {
-        band_heat_steps(&lat, &el, &phi, &m, o.bc, o.time, tau, steps, &mut u)?;
-    }
+    heat_steps(&lat, &nb, &phi, o.bc, o.time, tau, steps, &mut u)?;
     let z = zero_level(&lat, &nb.band, &phi);
     let decay = (-6.0 * o.t_end / (r * r)).exp();
     let e2 = surface_integral(&lat, &nb.band, &z, &u, |x, ux| (ux - decay * y(x)).powi(2));
