@@ -6,23 +6,27 @@
 //! by a face integral, which is not consistent (the `O(h)` errors of `∇I_h u` cancel only over a
 //! whole support). Here the missing cells — the *outside cells*, every cell with a boundary node
 //! as a corner and no interior node — are added back: their corners outside the band (the *ghost
-//! nodes*) carry values extrapolated linearly from the band along the inward normal `−∇Φ/|∇Φ|`
-//! (oriented away from the zero level),
+//! nodes*) carry values extrapolated from the band along the grid direction `e` (one of the 26
+//! neighbour offsets) closest to the inward normal `ν = −sign(Φ) ∇Φ/|∇Φ|`,
 //!
-//! `U(x_g) ≈ 2 I_h U(x_g + δ ν) − I_h U(x_g + 2δ ν)`, `δ = h`,
+//! `U(x_g) ≈ 3U(x_g + e) − 3U(x_g + 2e) + U(x_g + 3e)`,
 //!
-//! with `I_h` the trilinear interpolant in the band's cells; the error is `O(h²)` for any smooth
-//! `U`, whereas the constant extension along the normals is `O(h)` (the heat solution on a band
-//! is not constant along the normals). `Φ` on the ghost nodes is extrapolated the same way, which
-//! is exact to the interpolation error for a distance function, so the outside cells carry the
-//! weights `|∇Φ| P[Φ]` and `I_h⁰(|∇Φ|)` of 000 §2.1 like any element.
+//! from nodal values, exact for quadratics, so the ghost error is `O(h³)` and the completed rows'
+//! defect `O(h)`; where three band nodes do not line up, the linear `2U(x_g + e) − U(x_g + 2e)`,
+//! and failing that the trilinear interpolant at `x_g + δν`, `x_g + 2δν`. A linear
+//! extrapolation everywhere leaves an `O(h²)` ghost error, an `O(1)` row defect like the
+//! transparent flux's, and the error stalls (docs/dtgrid.md); the constant extension along the
+//! normals is only `O(h)` (the heat solution on a band is not constant along the normals). `Φ`
+//! on the ghost nodes is extrapolated the same way, exact up to `O(h³)` for a distance
+//! function, so the outside cells carry the weights `|∇Φ| P[Φ]` and `I_h⁰(|∇Φ|)` of 000 §2.1 like
+//! any element.
 //!
 //! With the outside cells every band node's support is complete: the boundary rows read
 //! `M_i U_t + Σ_{e ∋ i} a_e(U, Θ_i) = 0` over all cells around `i`, the outside cells' lumped
-//! mass is added to the boundary nodes ([`GhostRows::mass`]), and the outside cells' part of the
-//! row is lagged like the transparent flux: [`GhostRows::vector`] is
-//! `G_i = −Σ_{outside e ∋ i} a_e(V, Θ_i)` for the band field `V` (in time stepping the
-//! extrapolated `2U^k − U^{k−1}`) completed by its ghost values.
+//! mass is added to the boundary nodes ([`GhostRows::mass`]) and the outside cells' part of the
+//! rows to the stiffness ([`GhostRows::complete`], implicit and not symmetric: BiCGStab). The
+//! lagged form [`GhostRows::vector`], `G_i = −Σ_{outside e ∋ i} a_e(V, Θ_i)` for a band field
+//! `V` completed by its ghost values, keeps the matrix symmetric but is unstable at `τ = h²`.
 
 use super::band::Band;
 use super::fem::{element_mass, element_stiffness, Weight};
@@ -114,12 +118,8 @@ impl GhostRows {
             if nb.interior[i] {
                 continue;
             }
-            for q in 0..8 {
-                let lo = [
-                    c[0] - (q & 1) as i32,
-                    c[1] - ((q >> 1) & 1) as i32,
-                    c[2] - ((q >> 2) & 1) as i32,
-                ];
+            for q in 0..8i32 {
+                let lo = [c[0] - (q & 1), c[1] - ((q >> 1) & 1), c[2] - ((q >> 2) & 1)];
                 if (0..8).all(|k| !interior(corner(lo, k))) {
                     lows.push(lo);
                 }
@@ -269,10 +269,11 @@ fn corner_values(cell: &[Corner; 8], u: &[f64], ghost: &[f64]) -> [f64; 8] {
 /// The extrapolation distances `δ / h` tried in turn.
 const DELTAS: [f64; 9] = [1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 2.75, 3.0];
 
-/// Appends the extrapolation terms of the ghost node `g`: `2 I_h(x + δν) − I_h(x + 2δν)` with
-/// `ν` the inward normal (the Q1 gradient of `Φ` one cell inside, oriented away from the zero
-/// level) and the smallest `δ` of [`DELTAS`] that puts both points in band cells; where no `δ`
-/// does, the grid directions closest to `ν` are tried in turn.
+/// Appends the extrapolation terms of the ghost node `g`: with `ν` the inward normal (the Q1
+/// gradient of `Φ` one cell inside, oriented away from the zero level), the quadratic
+/// `(3, −3, 1)` along the first grid direction (closest to `ν` first) with three band nodes in
+/// line, else the linear `(2, −1)` with two, else `2 I_h(x + δν) − I_h(x + 2δν)` with the
+/// smallest `δ` of [`DELTAS`] that puts both points in band cells (then the grid directions).
 /// Error: [`Error::InvalidInput`] when no direction gives two points in band cells.
 fn extrapolation<B: Band<Coord = C3>>(
     lat: &Lattice,
@@ -314,26 +315,17 @@ fn extrapolation<B: Band<Coord = C3>>(
         .collect();
     let unit = |o: C3| DVec3::new(o[0] as f64, o[1] as f64, o[2] as f64).normalize();
     dirs.sort_by(|a, b| unit(*b).dot(dir).total_cmp(&unit(*a).dot(dir)));
-    let mode = std::env::var("GHOST_EXTRAP").unwrap_or_default();
     let along = |o: C3, k: i32| {
         nb.band
             .index([g[0] + k * o[0], g[1] + k * o[1], g[2] + k * o[2]])
     };
-    if mode != "normal1" {
-        // Nodal values along a grid direction: quadratic (3, −3, 1), else linear (2, −1).
-        let stencils: &[&[f64]] = if mode == "grid1" {
-            &[&[2.0, -1.0]]
-        } else {
-            &[&[3.0, -3.0, 1.0], &[2.0, -1.0]]
-        };
-        for st in stencils {
-            for &o in &dirs {
-                let nodes: Option<Vec<usize>> =
-                    (1..=st.len() as i32).map(|k| along(o, k)).collect();
-                if let Some(nodes) = nodes {
-                    terms.extend(nodes.iter().zip(st.iter()).map(|(&i, &c)| (i as u32, c)));
-                    return Ok(());
-                }
+    // Nodal values along a grid direction: quadratic (3, −3, 1), else linear (2, −1).
+    for st in [&[3.0, -3.0, 1.0][..], &[2.0, -1.0][..]] {
+        for &o in &dirs {
+            let nodes: Option<Vec<usize>> = (1..=st.len() as i32).map(|k| along(o, k)).collect();
+            if let Some(nodes) = nodes {
+                terms.extend(nodes.iter().zip(st).map(|(&i, &c)| (i as u32, c)));
+                return Ok(());
             }
         }
     }

@@ -136,9 +136,12 @@ pub fn band_heat_steps(
     }
     let n = u.len();
     let flux = |v: &[f64]| transparent_vector(lat, el, n, phi, v, Weight::Heat);
-    let flux = (bc == Bc::Transparent).then_some(&flux as &dyn Fn(&[f64]) -> Vec<f64>);
+    let flux = (bc == Bc::Transparent).then_some(&flux as Flux);
     steps_with(m, flux, time, tau, steps, u, solve_all)
 }
+
+/// A lagged boundary vector of the band field.
+type Flux<'a> = &'a dyn Fn(&[f64]) -> Vec<f64>;
 
 /// The time steps of [`band_heat_steps`] with the lagged boundary vector `flux` (`None`: natural
 /// conditions): the transparent `Γ` of 000 (2.9) or the outside cells' part of the complete
@@ -147,7 +150,7 @@ pub fn band_heat_steps(
 #[allow(clippy::too_many_arguments)]
 fn steps_with(
     m: &BandMatrices,
-    flux: Option<&dyn Fn(&[f64]) -> Vec<f64>>,
+    flux: Option<Flux>,
     time: TimeScheme,
     tau: f64,
     steps: usize,
