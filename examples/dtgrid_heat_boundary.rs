@@ -4,6 +4,10 @@
 //! of the boundary layer replaced at a time:
 //!
 //! - `transparent`: the scheme of `anisomesh dtgrid heat --time bdf2`;
+//! - `extrapolated`: the boundary rows completed by ghost values outside the band
+//!   (`anisomesh dtgrid heat --bc extrapolated --time bdf2`, `backends::dtgrid::ghost`);
+//! - `extrapolated-exact-phi`: the same with the exact `Φ` on the ghost nodes;
+//! - `ghost-exact`: the completed rows with the exact solution on the ghost nodes (lagged);
 //! - `exact-flux`: `Γ` from the exact gradient of the solution at the face Gauss points;
 //! - `recovered`: `Γ` from nodal central differences (second-order one-sided at the band's edge)
 //!   interpolated to the face Gauss points;
