@@ -4,6 +4,10 @@
 //! of the boundary layer replaced at a time:
 //!
 //! - `transparent`: the scheme of `anisomesh dtgrid heat --time bdf2`;
+//! - `extrapolated`: the boundary rows completed by ghost values outside the band
+//!   (`anisomesh dtgrid heat --bc extrapolated --time bdf2`, `backends::dtgrid::ghost`);
+//! - `extrapolated-exact-phi`: the same with the exact `Φ` on the ghost nodes;
+//! - `ghost-exact`: the completed rows with the exact solution on the ghost nodes (lagged);
 //! - `exact-flux`: `Γ` from the exact gradient of the solution at the face Gauss points;
 //! - `recovered`: `Γ` from nodal central differences (second-order one-sided at the band's edge)
 //!   interpolated to the face Gauss points;
@@ -21,10 +25,13 @@
 //! compares `transparent` and `exact-boundary` at `τ = 1e-4` on 17³ and 33³ (seconds).
 
 use anisomesh::backends::dtgrid::fem::{assemble, elements, transparent_vector, Element, Weight};
+use anisomesh::backends::dtgrid::ghost::GhostRows;
 use anisomesh::backends::dtgrid::lattice::{
     band_around, crossing_cells_of_fn, Lattice, NarrowBand, C3,
 };
-use anisomesh::backends::dtgrid::scheme::{solve_all, solve_dirichlet, system_matrix};
+use anisomesh::backends::dtgrid::scheme::{
+    solve_all, solve_dirichlet, solve_general, system_matrix,
+};
 use anisomesh::backends::dtgrid::surface::{surface_integral, zero_level};
 use anisomesh::backends::dtgrid::{Band, SortedBand};
 use anisomesh::fem::q1::{shape, shape_grad};
@@ -35,7 +42,10 @@ const R: f64 = 1.0 / 3.0;
 const T_END: f64 = 0.01;
 
 /// The variants (see the module comment).
-const VARIANTS: [&str; 8] = [
+const VARIANTS: [&str; 11] = [
+    "extrapolated",
+    "extrapolated-exact-phi",
+    "ghost-exact",
     "transparent",
     "exact-flux",
     "recovered",
@@ -196,8 +206,19 @@ fn run(variant: &str, n: usize, tau: f64) -> Result<(f64, f64, f64)> {
     let nn = coords.len();
     let phi: Vec<f64> = coords.iter().map(|&c| f(lat.pos(c))).collect();
     let el = elements(&nb);
-    let m = assemble(&lat, &el, nn, &phi, Weight::Heat)?;
+    let mut m = assemble(&lat, &el, nn, &phi, Weight::Heat)?;
     let h = lat.h;
+    let ghost = if variant.starts_with("extrapolated") || variant == "ghost-exact" {
+        let exact_phi = variant == "extrapolated-exact-phi";
+        let g = GhostRows::new_with(&lat, &nb, &phi, Weight::Heat, exact_phi.then_some(&f))?;
+        m.mass.iter_mut().zip(&g.mass).for_each(|(m, g)| *m += g);
+        if variant != "ghost-exact" {
+            m.stiff = g.complete(&m.stiff)?;
+        }
+        Some(g)
+    } else {
+        None
+    };
     // The consistent mass on the stiffness pattern (the same element couplings).
     let mut mc = m.stiff.clone();
     mc.clear_values();
@@ -256,7 +277,15 @@ fn run(variant: &str, n: usize, tau: f64) -> Result<(f64, f64, f64)> {
             }
             "exact-normal" => gamma(&lat, &el, &phi, true, 2, &discrete),
             "gauss3" => gamma(&lat, &el, &phi, false, 3, &discrete),
-            _ if dirichlet => vec![0.0; nn],
+            "ghost-exact" => ghost.as_ref().map_or(vec![0.0; nn], |g| {
+                let ex: Vec<f64> = g
+                    .ghost_nodes()
+                    .iter()
+                    .map(|&c| exact(lat.pos(c), t))
+                    .collect();
+                g.vector_with(v, &ex)
+            }),
+            _ if dirichlet || ghost.is_some() => vec![0.0; nn],
             _ => transparent_vector(&lat, &el, nn, &phi, v, Weight::Heat),
         }
     };
@@ -276,6 +305,8 @@ fn run(variant: &str, n: usize, tau: f64) -> Result<(f64, f64, f64)> {
         if dirichlet {
             boundary(u, g, t)?;
             solve_dirichlet(a, b, &fixed, u)
+        } else if variant.starts_with("extrapolated") {
+            solve_general(a, b, u)
         } else {
             solve_all(a, b, u)
         }

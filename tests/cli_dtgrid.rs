@@ -113,6 +113,27 @@ fn expression_and_heat_runs() {
     let e = row["error"].as_f64().unwrap();
     assert!(e > 0.0 && e < 0.012, "heat error {e}");
     assert_pictures(&dir, "dtgrid_heat");
+
+    // The same with the boundary rows completed by ghost values outside the band.
+    let dir = tmp("heat-extrapolated");
+    let out = anisomesh(&[
+        "dtgrid",
+        "heat",
+        "--shape",
+        "sphere",
+        "--n",
+        "17",
+        "--band",
+        "2",
+        "--bc",
+        "extrapolated",
+        "-o",
+        s(&dir),
+    ]);
+    ok(&out);
+    let row = &json(&dir.join("dtgrid_heat.json"))["rows"][0];
+    let e = row["error"].as_f64().unwrap();
+    assert!(e > 0.0 && e < 0.012, "extrapolated heat error {e}");
 }
 
 #[test]
@@ -152,6 +173,21 @@ fn bad_input_gives_one_line() {
     assert_clean_error(
         &anisomesh(&["dtgrid", "mcf", "--expr", "1 + x^2", "--n", "9", "-o", o]),
         "empty level set",
+    );
+    assert_clean_error(
+        &anisomesh(&[
+            "dtgrid",
+            "mcf",
+            "--shape",
+            "sphere",
+            "--n",
+            "17",
+            "--bc",
+            "extrapolated",
+            "-o",
+            o,
+        ]),
+        "conditions extrapolated",
     );
     assert_clean_error(
         &anisomesh(&["dtgrid", "mcf", "--expr", "x +* y", "--n", "9", "-o", o]),

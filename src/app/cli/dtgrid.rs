@@ -32,7 +32,8 @@ pub struct HeatArgs {
     /// Band half-width j in cells.
     #[arg(long, default_value_t = 2)]
     band: usize,
-    /// natural or transparent.
+    /// natural, transparent (000 (2.9)) or extrapolated (the boundary rows completed by ghost
+    /// values outside the band).
     #[arg(long, default_value = "transparent")]
     bc: String,
     /// Time step (default h²).

@@ -12,10 +12,12 @@
 
 use super::band::Band;
 use super::fem::{assemble, elements, transparent_vector, BandMatrices, Element, Weight};
+use super::ghost::GhostRows;
 use super::lattice::{band_around, crossing_cells_of_fn, Lattice, NarrowBand, C3};
-use super::scheme::{solve_all, system_matrix, Bc};
+use super::scheme::{solve_all, solve_general, system_matrix, Bc};
 use super::surface::{surface_integral, zero_level};
 use crate::error::{Error, Result};
+use crate::fem::Csr;
 use crate::geom::DVec3;
 
 /// The time discretisation of the band heat equation.
@@ -127,14 +129,35 @@ pub fn band_heat_steps(
     steps: usize,
     u: &mut [f64],
 ) -> Result<()> {
-    if bc == Bc::Dirichlet {
+    if matches!(bc, Bc::Dirichlet | Bc::Extrapolated) {
         return Err(Error::InvalidInput(
-            "the heat problem takes natural or transparent conditions".into(),
+            "the heat problem takes natural or transparent conditions here".into(),
         ));
     }
     let n = u.len();
-    let w = Weight::Heat;
-    let flux = |v: &[f64]| transparent_vector(lat, el, n, phi, v, w);
+    let flux = |v: &[f64]| transparent_vector(lat, el, n, phi, v, Weight::Heat);
+    let flux = (bc == Bc::Transparent).then_some(&flux as Flux);
+    steps_with(m, flux, time, tau, steps, u, solve_all)
+}
+
+/// A lagged boundary vector of the band field.
+type Flux<'a> = &'a dyn Fn(&[f64]) -> Vec<f64>;
+
+/// The time steps of [`band_heat_steps`] with the lagged boundary vector `flux` (`None`: natural
+/// conditions): the transparent `Γ` of 000 (2.9) or the outside cells' part of the complete
+/// boundary rows ([`GhostRows::vector`]).
+/// Errors: solver errors from [`solve_all`].
+#[allow(clippy::too_many_arguments)]
+fn steps_with(
+    m: &BandMatrices,
+    flux: Option<Flux>,
+    time: TimeScheme,
+    tau: f64,
+    steps: usize,
+    u: &mut [f64],
+    solve: fn(&Csr, &[f64], &mut [f64]) -> Result<usize>,
+) -> Result<()> {
+    let n = u.len();
     let mut b = vec![0.0; n];
     if time == TimeScheme::Euler {
         let a = system_matrix(m, tau)?;
@@ -143,11 +166,11 @@ pub fn band_heat_steps(
                 .zip(&m.mass)
                 .zip(u.iter())
                 .for_each(|((b, m), u)| *b = m * u);
-            if bc == Bc::Transparent {
+            if let Some(flux) = flux {
                 let g = flux(u);
                 b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
             }
-            solve_all(&a, &b, u)?;
+            solve(&a, &b, u)?;
         }
         return Ok(());
     }
@@ -164,11 +187,11 @@ pub fn band_heat_steps(
             .zip(&m.mass)
             .zip(u.iter().zip(&lu))
             .for_each(|((b, m), (u, lu))| *b = m * u - 0.5 * tau * lu);
-        if bc == Bc::Transparent {
+        if let Some(flux) = flux {
             let g = flux(u);
             b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
         }
-        solve_all(&a, &b, u)?;
+        solve(&a, &b, u)?;
     }
     let t2 = 2.0 * tau / 3.0;
     let a = system_matrix(m, t2)?;
@@ -182,15 +205,47 @@ pub fn band_heat_steps(
             .iter_mut()
             .zip(u.iter().zip(&prev))
             .for_each(|(g, (u, p))| *g = 2.0 * u - p);
-        if bc == Bc::Transparent {
+        if let Some(flux) = flux {
             let g = flux(&guess);
             b.iter_mut().zip(&g).for_each(|(b, g)| *b += t2 * g);
         }
         prev.copy_from_slice(u);
         u.copy_from_slice(&guess);
-        solve_all(&a, &b, u)?;
+        solve(&a, &b, u)?;
     }
     Ok(())
+}
+
+/// Assembles the heat matrices of the band `nb` for the band field `phi` and advances `u` by
+/// `steps` steps of `tau` under natural, transparent (000 (2.9)) or extrapolated conditions
+/// ([`GhostRows`]: the boundary rows completed by the cells outside the band, solved implicitly
+/// by BiCGStab since the completed matrix is not symmetric).
+/// Errors: [`Error::InvalidInput`] for Dirichlet conditions or a band too thin for the ghost
+/// extrapolation; solver errors.
+#[allow(clippy::too_many_arguments)]
+pub fn heat_steps<B: Band<Coord = C3>>(
+    lat: &Lattice,
+    nb: &NarrowBand<B>,
+    phi: &[f64],
+    bc: Bc,
+    time: TimeScheme,
+    tau: f64,
+    steps: usize,
+    u: &mut [f64],
+) -> Result<()> {
+    let n = nb.band.len();
+    let el = elements(nb);
+    let mut m = assemble(lat, &el, n, phi, Weight::Heat)?;
+    if bc != Bc::Extrapolated {
+        return band_heat_steps(lat, &el, phi, &m, bc, time, tau, steps, u);
+    }
+    let ghost = GhostRows::new(lat, nb, phi, Weight::Heat)?;
+    m.mass
+        .iter_mut()
+        .zip(&ghost.mass)
+        .for_each(|(m, g)| *m += g);
+    m.stiff = ghost.complete(&m.stiff)?;
+    steps_with(&m, None, time, tau, steps, u, solve_general)
 }
 
 /// Runs the heat problem on a band stored as `B`.
@@ -221,9 +276,7 @@ pub fn sphere_heat<B: Band<Coord = C3>>(o: &HeatOptions) -> Result<HeatResult> {
     };
     let mut u: Vec<f64> = nb.band.coords().map(|c| y(lat.pos(c))).collect();
     let (steps, tau) = step_count(o.tau.unwrap_or(lat.h * lat.h), o.t_end)?;
-    let el = elements(&nb);
-    let m = assemble(&lat, &el, n, &phi, Weight::Heat)?;
-    band_heat_steps(&lat, &el, &phi, &m, o.bc, o.time, tau, steps, &mut u)?;
+    heat_steps(&lat, &nb, &phi, o.bc, o.time, tau, steps, &mut u)?;
     let z = zero_level(&lat, &nb.band, &phi);
     let decay = (-6.0 * o.t_end / (r * r)).exp();
     let e2 = surface_integral(&lat, &nb.band, &z, &u, |x, ux| (ux - decay * y(x)).powi(2));

@@ -315,11 +315,15 @@ impl LeanState {
     }
 
     /// One time step of length `tau` (see the module documentation).
-    /// Errors: [`Error::InvalidInput`] for a bad `tau`, no solves or transparent conditions;
+    /// Errors: [`Error::InvalidInput`] for a bad `tau`, no solves, transparent or extrapolated conditions;
     /// [`Error::EmptyLevelSet`], [`Error::NotConverged`] as [`McfState::step`].
     pub fn step(&mut self, tau: f64, o: &LeanOptions) -> Result<StepReport> {
         let m = &o.mcf;
-        if tau.is_nan() || tau <= 0.0 || m.inner == 0 || m.bc == Bc::Transparent {
+        if tau.is_nan()
+            || tau <= 0.0
+            || m.inner == 0
+            || matches!(m.bc, Bc::Transparent | Bc::Extrapolated)
+        {
             return Err(Error::InvalidInput(format!(
                 "matrix-free mean curvature step: tau = {tau}, solves per step = {}, \
                  conditions {} (tau and solves positive; dirichlet or natural)",

@@ -288,12 +288,14 @@ impl<B: Band<Coord = C3> + Clone> McfState<B> {
 
     /// One time step of length `tau`.
     /// Errors: [`Error::EmptyLevelSet`] when the zero level vanishes, [`Error::InvalidInput`]
-    /// when the band leaves the grid, solver errors.
+    /// when the band leaves the grid or for extrapolated conditions (heat only), solver errors.
     pub fn step(&mut self, tau: f64, o: &McfOptions) -> Result<StepReport> {
-        if tau.is_nan() || tau <= 0.0 || o.inner == 0 {
+        if tau.is_nan() || tau <= 0.0 || o.inner == 0 || o.bc == Bc::Extrapolated {
             return Err(Error::InvalidInput(format!(
-                "mean curvature step: tau = {tau}, solves per step = {} (both positive)",
-                o.inner
+                "mean curvature step: tau = {tau}, solves per step = {}, conditions {} (tau and \
+                 solves positive; dirichlet, natural or transparent)",
+                o.inner,
+                o.bc.name()
             )));
         }
         let lat = self.lat;

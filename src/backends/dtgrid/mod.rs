@@ -18,6 +18,7 @@ mod band;
 pub mod distance;
 pub mod elemop;
 pub mod fem;
+pub mod ghost;
 pub mod grid;
 pub mod heat;
 pub mod lattice;

@@ -29,7 +29,7 @@ pub struct SurfaceOperator {
 
 impl SurfaceOperator {
     /// Assembles the surface heat matrices on the band `nb` for the band field `phi`.
-    /// Errors: [`Error::InvalidInput`] for Dirichlet conditions (the surface stays fixed; use
+    /// Errors: [`Error::InvalidInput`] for Dirichlet or extrapolated conditions (the surface stays fixed; use
     /// natural or transparent ones) or a field of the wrong length.
     pub fn new<B: Band<Coord = C3>>(
         lat: Lattice,
@@ -37,7 +37,7 @@ impl SurfaceOperator {
         phi: &[f64],
         bc: Bc,
     ) -> Result<SurfaceOperator> {
-        if bc == Bc::Dirichlet {
+        if matches!(bc, Bc::Dirichlet | Bc::Extrapolated) {
             return Err(Error::InvalidInput(
                 "reaction–diffusion on a fixed surface takes natural or transparent conditions"
                     .into(),

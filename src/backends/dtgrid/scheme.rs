@@ -15,6 +15,9 @@ pub enum Bc {
     Natural,
     /// Transparent Neumann conditions: the boundary flux of the last step added (000 (2.9)–(2.11)).
     Transparent,
+    /// The heat equation's boundary rows completed by the cells outside the band, with values
+    /// extrapolated linearly along the normals ([`super::ghost`]); heat problems only.
+    Extrapolated,
     /// Dirichlet values on the boundary layer (000 (2.12)), with the nested inner iteration of
     /// 000 §2.4 where the caller asks for more than one solve per step.
     Dirichlet,
@@ -27,6 +30,7 @@ impl Bc {
             Bc::Natural => "natural",
             Bc::Transparent => "transparent",
             Bc::Dirichlet => "dirichlet",
+            Bc::Extrapolated => "extrapolated",
         }
     }
 
@@ -37,8 +41,9 @@ impl Bc {
             "natural" => Ok(Bc::Natural),
             "transparent" => Ok(Bc::Transparent),
             "dirichlet" => Ok(Bc::Dirichlet),
+            "extrapolated" => Ok(Bc::Extrapolated),
             _ => Err(Error::InvalidInput(format!(
-                "boundary condition {s:?} (natural, transparent or dirichlet)"
+                "boundary condition {s:?} (natural, transparent, extrapolated or dirichlet)"
             ))),
         }
     }
@@ -146,6 +151,81 @@ pub fn solve_dirichlet_with(
         },
     );
     x.iter_mut().zip(&y).for_each(|(x, y)| *x += y);
+    finish(rep, x)
+}
+
+/// Solves `A x = b` for a matrix `A` that need not be symmetric (the completed rows of
+/// [`super::ghost::GhostRows::complete`]) by BiCGStab with the diagonal preconditioner, from the
+/// guess in `x`; returns the iterations.
+/// Errors: as [`solve_all`] (also on a breakdown of BiCGStab).
+pub fn solve_general(a: &Csr, b: &[f64], x: &mut [f64]) -> Result<usize> {
+    use crate::fem::csr::{dot, norm};
+    let o = cg_options();
+    let n = b.len();
+    let d = a.diagonal();
+    let precond = |v: &[f64], out: &mut [f64]| {
+        out.iter_mut()
+            .zip(v)
+            .zip(&d)
+            .for_each(|((o, v), d)| *o = v / d)
+    };
+    let mut r = vec![0.0; n];
+    a.matvec(x, &mut r);
+    r.iter_mut().zip(b).for_each(|(r, b)| *r = b - *r);
+    let r0 = r.clone();
+    let tol = (o.rtol * norm(b)).max(o.atol);
+    let (mut rho, mut alpha, mut omega) = (1.0, 1.0, 1.0);
+    let (mut p, mut v) = (vec![0.0; n], vec![0.0; n]);
+    let (mut ph, mut s, mut sh, mut t) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut rep = crate::fem::CgReport {
+        residual: norm(&r),
+        ..Default::default()
+    };
+    while rep.iterations < o.max_iter {
+        if rep.residual <= tol {
+            rep.converged = true;
+            break;
+        }
+        rep.iterations += 1;
+        let rho_new = dot(&r0, &r);
+        if rho_new == 0.0 || omega == 0.0 {
+            break;
+        }
+        let beta = rho_new / rho * (alpha / omega);
+        rho = rho_new;
+        p.iter_mut()
+            .zip(&r)
+            .zip(&v)
+            .for_each(|((p, r), v)| *p = r + beta * (*p - omega * v));
+        precond(&p, &mut ph);
+        a.matvec(&ph, &mut v);
+        let r0v = dot(&r0, &v);
+        if r0v == 0.0 {
+            break;
+        }
+        alpha = rho / r0v;
+        s.iter_mut()
+            .zip(&r)
+            .zip(&v)
+            .for_each(|((s, r), v)| *s = r - alpha * v);
+        if norm(&s) <= tol {
+            x.iter_mut().zip(&ph).for_each(|(x, p)| *x += alpha * p);
+            rep.residual = norm(&s);
+            continue;
+        }
+        precond(&s, &mut sh);
+        a.matvec(&sh, &mut t);
+        let tt = dot(&t, &t);
+        omega = if tt > 0.0 { dot(&t, &s) / tt } else { 0.0 };
+        x.iter_mut()
+            .zip(ph.iter().zip(&sh))
+            .for_each(|(x, (p, s))| *x += alpha * p + omega * s);
+        r.iter_mut()
+            .zip(s.iter().zip(&t))
+            .for_each(|(r, (s, t))| *r = s - omega * t);
+        rep.residual = norm(&r);
+    }
+    rep.residual /= norm(b).max(f64::MIN_POSITIVE);
     finish(rep, x)
 }
 

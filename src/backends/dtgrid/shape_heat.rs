@@ -1,13 +1,13 @@
 //! The heat equation `∂ₜu − Δ_M u = 0` on the zero level `M` of any implicit function, solved
 //! on the narrow band as in 000 §2.1 (the scheme of [`super::heat`], there on a sphere): the
 //! band carries the signed distance `Φ` to the marching-tetrahedra zero level, each step solves
-//! `(M[Φ] + τ L[Φ]) U^{k+1} = M[Φ] U^k (+ τ Γ[U^k])` with natural or transparent conditions
-//! (backward Euler, [`super::heat::band_heat_steps`]).
+//! `(M[Φ] + τ L[Φ]) U^{k+1} = M[Φ] U^k (+ τ Γ[U^k])` with natural or transparent conditions,
+//! or with the boundary rows completed by ghost values outside the band (extrapolated
+//! conditions, [`super::ghost`]) (backward Euler, [`super::heat::heat_steps`]).
 
 use super::band::Band;
-use super::fem::{assemble, elements, Weight};
 use super::grid::DtGrid;
-use super::heat::{band_heat_steps, step_count, TimeScheme};
+use super::heat::{heat_steps, step_count, TimeScheme};
 use super::lattice::{Lattice, C3};
 use super::mcf::McfState;
 use super::scheme::Bc;
@@ -53,13 +53,12 @@ pub fn shape_heat(
 ) -> Result<ShapeHeat> {
     if bc == Bc::Dirichlet {
         return Err(Error::InvalidInput(
-            "the heat problem takes natural or transparent conditions".into(),
+            "the heat problem takes natural, transparent or extrapolated conditions".into(),
         ));
     }
     let (steps, tau) = step_count(tau, t_end)?;
     let state: McfState<DtGrid<C3>> = McfState::new(lat, j, f)?;
     let (nb, phi) = (&state.nb, &state.phi);
-    let n = nb.band.len();
     let mut u: Vec<f64> = nb.band.coords().map(|c| u0(lat.pos(c))).collect();
     if let Some(i) = u.iter().position(|v| !v.is_finite()) {
         let c = nb.band.coords().nth(i).unwrap_or_default();
@@ -68,19 +67,7 @@ pub fn shape_heat(
             msg: format!("not finite at {:?}", lat.pos(c)),
         });
     }
-    let el = elements(nb);
-    let m = assemble(&lat, &el, n, phi, Weight::Heat)?;
-    band_heat_steps(
-        &lat,
-        &el,
-        phi,
-        &m,
-        bc,
-        TimeScheme::Euler,
-        tau,
-        steps,
-        &mut u,
-    )?;
+    heat_steps(&lat, nb, phi, bc, TimeScheme::Euler, tau, steps, &mut u)?;
     let z = zero_level(&lat, &nb.band, phi);
     let error = exact
         .map(|ex| surface_integral(&lat, &nb.band, &z, &u, |x, ux| (ux - ex(x)).powi(2)).sqrt());

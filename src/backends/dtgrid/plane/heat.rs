@@ -67,13 +67,13 @@ pub struct CircleHeatResult {
 }
 
 /// Runs the heat problem of `o`.
-/// Errors: [`Error::InvalidInput`] for Dirichlet conditions, a non-positive time, radius or
+/// Errors: [`Error::InvalidInput`] for Dirichlet or extrapolated conditions, a non-positive time, radius or
 /// time step, or a circle whose band does not fit in `[−½, ½]²`; [`Error::EmptyLevelSet`];
 /// solver errors.
 pub fn circle_heat(o: &CircleHeatOptions) -> Result<CircleHeatResult> {
-    if o.bc == Bc::Dirichlet {
+    if matches!(o.bc, Bc::Dirichlet | Bc::Extrapolated) {
         return Err(Error::InvalidInput(
-            "the heat problem takes natural or transparent conditions".into(),
+            "the planar heat problem takes natural or transparent conditions".into(),
         ));
     }
     let ok = |x: f64| x.is_finite() && x > 0.0;

@@ -192,18 +192,23 @@ impl PlaneMcf {
             rep.times.assembly += t.elapsed().as_secs_f64();
             let t = Instant::now();
             let mut x = approx.clone();
-            rep.cg_iterations += match o.bc {
-                Bc::Dirichlet => {
-                    let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
-                    solve_dirichlet(&a, &b, &fixed, &mut x)?
-                }
-                Bc::Natural => solve_all(&a, &b, &mut x)?,
-                Bc::Transparent => {
-                    let g = transparent_vector(&plane, &el, n, &phik, &approx, w);
-                    b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
-                    solve_all(&a, &b, &mut x)?
-                }
-            };
+            rep.cg_iterations +=
+                match o.bc {
+                    Bc::Dirichlet => {
+                        let fixed: Vec<bool> = nb.interior.iter().map(|i| !i).collect();
+                        solve_dirichlet(&a, &b, &fixed, &mut x)?
+                    }
+                    Bc::Natural => solve_all(&a, &b, &mut x)?,
+                    Bc::Extrapolated => return Err(Error::InvalidInput(
+                        "mean curvature motion takes natural, transparent or Dirichlet conditions"
+                            .into(),
+                    )),
+                    Bc::Transparent => {
+                        let g = transparent_vector(&plane, &el, n, &phik, &approx, w);
+                        b.iter_mut().zip(&g).for_each(|(b, g)| *b += tau * g);
+                        solve_all(&a, &b, &mut x)?
+                    }
+                };
             rep.solves += 1;
             rep.times.solve += t.elapsed().as_secs_f64();
             let t = Instant::now();
