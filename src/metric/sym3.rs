@@ -165,22 +165,40 @@ impl Sym3 {
         )
     }
 
-    /// Eigenvalues ascending and the matching orthonormal eigenvectors (nalgebra
-    /// `SymmetricEigen`; see the module documentation for the accuracy). A non-finite input gives
+    /// Eigenvalues ascending and the matching orthonormal eigenvectors: the closed form of
+    /// [`super::eigen3`] when it passes its residual check, otherwise nalgebra's
+    /// `SymmetricEigen` (see the module documentation for the accuracy). A non-finite input gives
     /// NaN eigenvalues (never a hang or a panic).
     pub fn eigen(&self) -> ([f64; 3], [DVec3; 3]) {
+        if !self.is_finite() {
+            return ([f64::NAN; 3], [DVec3::X, DVec3::Y, DVec3::Z]);
+        }
+        if self.xy == 0.0 && self.xz == 0.0 && self.yz == 0.0 {
+            return self.eigen_diagonal();
+        }
+        super::eigen3::eigen_closed_form(self).unwrap_or_else(|| self.eigen_iterative())
+    }
+
+    /// The eigen-decomposition of a diagonal tensor: its entries sorted, with the exact axes.
+    fn eigen_diagonal(&self) -> ([f64; 3], [DVec3; 3]) {
+        let mut idx = [
+            (self.xx, DVec3::X),
+            (self.yy, DVec3::Y),
+            (self.zz, DVec3::Z),
+        ];
+        idx.sort_by(|a, b| a.0.total_cmp(&b.0));
+        (idx.map(|x| x.0), idx.map(|x| x.1))
+    }
+
+    /// [`Sym3::eigen`] by nalgebra's `SymmetricEigen` alone (implicit QR; the reference and the
+    /// fallback of the closed form).
+    pub fn eigen_iterative(&self) -> ([f64; 3], [DVec3; 3]) {
         let nan = ([f64::NAN; 3], [DVec3::X, DVec3::Y, DVec3::Z]);
         if !self.is_finite() {
             return nan;
         }
         if self.xy == 0.0 && self.xz == 0.0 && self.yz == 0.0 {
-            let mut idx = [
-                (self.xx, DVec3::X),
-                (self.yy, DVec3::Y),
-                (self.zz, DVec3::Z),
-            ];
-            idx.sort_by(|a, b| a.0.total_cmp(&b.0));
-            return (idx.map(|x| x.0), idx.map(|x| x.1));
+            return self.eigen_diagonal();
         }
         let Some(e) = SymmetricEigen::try_new(self.to_matrix(), f64::EPSILON, 10_000) else {
             return nan;

@@ -288,17 +288,20 @@ pub(crate) enum Op {
     Smooth = 4,
 }
 
-/// The real cube root of `x >= 0` to within a few units in the last place: a bit-level first
-/// guess and four Newton steps (faster than the portable `f64::cbrt`).
+/// `x^{-1/3}` for a positive normal `x`, to within a few units in the last place, without a
+/// division: a bit-level first guess (within 3.5 %) and three second-order steps
+/// `y ← y (1 + r/3 + 2r²/9)`, `r = 1 − x y³` (each cubes the relative error). Other inputs go
+/// through `f64::cbrt`.
 #[inline]
-pub(crate) fn cbrt_pos(x: f64) -> f64 {
-    if x <= 0.0 || !x.is_finite() {
-        return x.cbrt();
+pub(crate) fn inv_cbrt_pos(x: f64) -> f64 {
+    if !(x >= f64::MIN_POSITIVE && x <= f64::MAX) {
+        return 1.0 / x.cbrt();
     }
-    // 0x2a9f7893782da1ce: the bias that makes bits/3 + bias a first guess within ~5 %.
-    let mut y = f64::from_bits(x.to_bits() / 3 + 0x2a9f_7893_782d_a1ce);
-    for _ in 0..4 {
-        y -= (y - x / (y * y)) / 3.0;
+    // 0x553ef0f78b010000: the constant that makes `C − bits/3` a first guess within 3.5 %.
+    let mut y = f64::from_bits(0x553e_f0f7_8b01_0000 - x.to_bits() / 3);
+    for _ in 0..3 {
+        let r = 1.0 - x * (y * y * y);
+        y += y * r * (1.0 / 3.0 + r * (2.0 / 9.0));
     }
     y
 }
@@ -316,9 +319,12 @@ pub fn mean_ratio(p: [DVec3; 4], m: &[Sym3; 4]) -> f64 {
     for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
         s += mm.quad(p[j] - p[i]);
     }
-    let vm = vol * mm.det().max(0.0).sqrt();
-    let c = cbrt_pos(3.0 * vm);
-    12.0 * c * c / s
+    // (3 |K|_M)^{2/3} = x · x^{-1/3}.
+    let x = 3.0 * vol * mm.det().max(0.0).sqrt();
+    if x == 0.0 {
+        return 0.0;
+    }
+    12.0 * x * inv_cbrt_pos(x) / s
 }
 
 impl Remesher for Ctx<'_> {
@@ -362,19 +368,23 @@ impl Remesher for Ctx<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::cbrt_pos;
+    use super::inv_cbrt_pos;
 
     #[test]
-    fn cube_root_to_the_last_bits() {
+    fn inverse_cube_root_to_the_last_bits() {
         let mut x = 1e-300;
+        let mut worst = 0.0f64;
         while x < 1e300 {
             for y in [x, 1.7 * x, 3.3 * x, 7.9 * x] {
-                let c = cbrt_pos(y);
-                assert!((c - y.cbrt()).abs() <= 4.0 * f64::EPSILON * c, "{y}: {c}");
+                let c = inv_cbrt_pos(y);
+                worst = worst.max((c * y.cbrt() - 1.0).abs());
             }
             x *= 10.0;
         }
-        assert_eq!(cbrt_pos(0.0), 0.0);
-        assert_eq!(cbrt_pos(8.0), 2.0);
+        eprintln!("inverse cube root: relative error {worst:.1e}");
+        assert!(worst <= 4.0 * f64::EPSILON, "{worst:e}");
+        assert_eq!(inv_cbrt_pos(0.0), f64::INFINITY);
+        assert!((inv_cbrt_pos(1e-310) * 1e-310f64.cbrt() - 1.0).abs() < 1e-15);
+        assert!((inv_cbrt_pos(8.0) - 0.5).abs() <= f64::EPSILON);
     }
 }
