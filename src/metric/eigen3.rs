@@ -208,6 +208,21 @@ mod tests {
         assert!(worst_rel[0] < 1e-9 && worst_rel[1] < 1e-3, "{worst_rel:?}");
         // The fallback is for rare cases only.
         assert!(refused * 100 < n, "{refused} refused");
+        // Cost per call, printed only (never asserted: the machine may be loaded).
+        let mats: Vec<Sym3> = (0..n)
+            .map(|_| {
+                let l = [rnd(&mut st), 1e3 * rnd(&mut st), 1e6 * rnd(&mut st)];
+                Sym3::from_eigen(l, rotation(&mut st))
+            })
+            .collect();
+        let time = |f: &dyn Fn(&Sym3) -> f64| {
+            let t = std::time::Instant::now();
+            let s: f64 = mats.iter().map(f).sum();
+            (t.elapsed().as_secs_f64() * 1e9 / n as f64, s)
+        };
+        let (closed, _) = time(&|a| eigen_closed_form(a).map_or(0.0, |e| e.0[0]));
+        let (iter, _) = time(&|a| a.eigen_iterative().0[0]);
+        eprintln!("ns per call: closed form {closed:.0}, iterative {iter:.0}");
     }
 
     #[test]

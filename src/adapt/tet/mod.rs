@@ -310,17 +310,18 @@ pub(crate) fn inv_cbrt_pos(x: f64) -> f64 {
 /// `12 (3 |K|_M)^{2/3} / Σ_e e^T M e`, in (0, 1], 1 for a regular tetrahedron of the metric;
 /// 0 or negative when `p` is flat or inverted.
 pub fn mean_ratio(p: [DVec3; 4], m: &[Sym3; 4]) -> f64 {
-    let mm = m[0].add(&m[1]).add(&m[2]).add(&m[3]).scale(0.25);
     let vol = crate::mesh3::signed_volume(p[0], p[1], p[2], p[3]);
     if vol <= 0.0 {
         return vol;
     }
-    let mut s = 0.0;
-    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
-        s += mm.quad(p[j] - p[i]);
-    }
+    // With M4 = 4 M (the sum of the vertex metrics, exact powers of two throughout):
+    // Σ_e eᵀ M e = Σ_i d_iᵀ M4 d_i with d_i = p_i − centroid (Σ_{i<j} (p_j − p_i)(p_j − p_i)ᵀ =
+    // 4 Σ_i d_i d_iᵀ for four points), and |K|_M = |K| sqrt(det M4) / 8.
+    let m4 = m[0].add(&m[1]).add(&m[2]).add(&m[3]);
+    let c = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+    let s: f64 = p.iter().map(|&q| m4.quad(q - c)).sum();
     // (3 |K|_M)^{2/3} = x · x^{-1/3}.
-    let x = 3.0 * vol * mm.det().max(0.0).sqrt();
+    let x = 0.375 * vol * m4.det().max(0.0).sqrt();
     if x == 0.0 {
         return 0.0;
     }
@@ -368,7 +369,50 @@ impl Remesher for Ctx<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::inv_cbrt_pos;
+    use super::{inv_cbrt_pos, mean_ratio};
+    use crate::geom::DVec3;
+    use crate::metric::Sym3;
+
+    #[test]
+    fn mean_ratio_matches_the_measure_in_one_metric() {
+        // In one metric the quality is the UGAWG mean ratio of `anisomesh measure`; a regular
+        // tetrahedron of the metric rates 1, an inverted one at most 0.
+        let mut worst = 0.0f64;
+        for k in 0..200 {
+            let t = k as f64;
+            let p = [
+                DVec3::new(0.1 * t.sin(), 0.0, 0.3),
+                DVec3::new(1.0, 0.2 * t.cos(), 0.0),
+                DVec3::new(0.3, 1.0 + 0.1 * (2.0 * t).sin(), 0.1),
+                DVec3::new(0.2, 0.3, 1.0),
+            ]
+            .map(|q| 1e-3 * q + DVec3::splat(0.7));
+            let m = Sym3::new(1e6, 2e5 * t.cos(), 1e4, 5e5, -1e3 * t, 3e4 + 1e3 * t);
+            if !m.is_spd() {
+                continue;
+            }
+            let q = mean_ratio(p, &[m; 4]);
+            let r = crate::metric::conformity::mean_ratio(p, &m);
+            worst = worst.max((q / r - 1.0).abs());
+        }
+        assert!(worst < 1e-12, "{worst:e}");
+        let s = 2f64.sqrt();
+        let reg = [
+            DVec3::new(1.0, 0.0, -1.0 / s),
+            DVec3::new(-1.0, 0.0, -1.0 / s),
+            DVec3::new(0.0, 1.0, 1.0 / s),
+            DVec3::new(0.0, -1.0, 1.0 / s),
+        ];
+        let q = mean_ratio(reg, &[Sym3::IDENTITY; 4]);
+        let q = if q < 0.0 {
+            mean_ratio([reg[1], reg[0], reg[2], reg[3]], &[Sym3::IDENTITY; 4])
+        } else {
+            q
+        };
+        assert!((q - 1.0).abs() < 1e-14, "{q}");
+        let flat = [reg[0], reg[1], reg[2], (reg[0] + reg[1]) * 0.5];
+        assert!(mean_ratio(flat, &[Sym3::IDENTITY; 4]) <= 0.0);
+    }
 
     #[test]
     fn inverse_cube_root_to_the_last_bits() {
