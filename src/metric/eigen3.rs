@@ -75,7 +75,7 @@ pub(crate) fn eigen_closed_form(a: &Sym3) -> Option<([f64; 3], [DVec3; 3])> {
     for k in 0..3 {
         res += (b.mul_vec(vecs[k]) - vals[k] * vecs[k]).length_squared();
     }
-    if !(res.sqrt() <= RESIDUAL * b.norm()) {
+    if res.is_nan() || res.sqrt() > RESIDUAL * b.norm() {
         return None;
     }
     let mut idx = [0usize, 1, 2];
@@ -186,17 +186,14 @@ mod tests {
             ls.sort_by(f64::total_cmp);
             if i % 5 == 1 || i % 5 == 2 {
                 let k = i % 5 - 1;
-                for j in 0..3 {
-                    worst_rel[k] = worst_rel[k].max((e.0[j] / ls[j] - 1.0).abs());
+                for (x, y) in e.0.iter().zip(&ls) {
+                    worst_rel[k] = worst_rel[k].max((x / y - 1.0).abs());
                 }
             }
             // Same answer as the iterative solver to within its own accuracy.
             let (li, _) = a.eigen_iterative();
-            for j in 0..3 {
-                assert!(
-                    (e.0[j] - li[j]).abs() <= 1e-12 * a.norm(),
-                    "{l:?}: {e:?} {li:?}"
-                );
+            for (x, y) in e.0.iter().zip(&li) {
+                assert!((x - y).abs() <= 1e-12 * a.norm(), "{l:?}: {e:?} {li:?}");
             }
         }
         eprintln!(

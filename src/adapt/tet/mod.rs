@@ -294,7 +294,7 @@ pub(crate) enum Op {
 /// through `f64::cbrt`.
 #[inline]
 pub(crate) fn inv_cbrt_pos(x: f64) -> f64 {
-    if !(x >= f64::MIN_POSITIVE && x <= f64::MAX) {
+    if !(f64::MIN_POSITIVE..=f64::MAX).contains(&x) {
         return 1.0 / x.cbrt();
     }
     // 0x553ef0f78b010000: the constant that makes `C − bits/3` a first guess within 3.5 %.
