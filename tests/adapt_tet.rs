@@ -125,7 +125,12 @@ fn star_without_degenerate_tetrahedra() {
         c.volume_error,
         r.seconds
     );
-    assert!(r.quality_min > 0.1, "{}", r.quality_min);
+    // Degenerate tetrahedra (four vertices on a line, mean ratio 3e-13 before the split's
+    // quality guard) must not come back. The worst element itself scatters with the last bits
+    // of the input: at ε = (0.999, 1, 1.001, 1.003)·10⁻² it measured 0.43, 0.087, 0.074, 0.16
+    // (0.078, 0.27, 0.039, 0.28 with the iterative eigen-solver), so the bound is well below
+    // that scatter and far above degenerate.
+    assert!(r.quality_min > 0.02, "{}", r.quality_min);
     assert!(
         c.exact_to_discrete.p99 < 1e-2,
         "{}",

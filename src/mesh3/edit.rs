@@ -254,6 +254,9 @@ impl EditMesh3 {
     /// The neighbours of `v` (vertices sharing a tetrahedron with it), sorted.
     pub fn vertex_neighbours(&self, v: u32, out: &mut Vec<u32>) {
         out.clear();
+        // An interior vertex has about half as many neighbours as ball tetrahedra: one
+        // allocation for a fresh buffer instead of a few reallocations.
+        out.reserve(self.ball[v as usize].len() + 4);
         // Each neighbour appears in about five tetrahedra of the ball: the first occurrence is
         // kept by a per-thread mark per vertex, so only the distinct ones are sorted.
         SEEN.with_borrow_mut(|(mark, seen)| {

@@ -303,9 +303,10 @@ impl EditMesh3 {
         let mut best = [[floor; MAX_RING]; MAX_RING];
         let mut arg = [[0usize; MAX_RING]; MAX_RING];
         // Whether the ring diagonal (i, j) may be created (the closing pair (0, n − 1) is a
-        // ring edge); asked only of pairs some triangle could use.
+        // ring edge); asked only of pairs some triangle could use, the caller's test (a length,
+        // in the metric) before the ball scan of `is_edge`.
         let diag_ok = |i: usize, j: usize| {
-            (i == 0 && j == n - 1) || !self.is_edge(ring[i], ring[j]) && new_edge(ring[i], ring[j])
+            (i == 0 && j == n - 1) || new_edge(ring[i], ring[j]) && !self.is_edge(ring[i], ring[j])
         };
         // The worse of the two tetrahedra on the triangle (i, k, j), or anything at most
         // `beat` when it cannot exceed `beat`.

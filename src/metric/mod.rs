@@ -14,7 +14,8 @@
 //! - [`gradation`]: bounded size growth along edges (metric-space gradation).
 //! - [`from_hessian`]: the multiscale `L^p` interpolation-error metric (Loseille–Alauzet).
 //! - [`field`]: whole-field checks ([`validate_field`]).
-//! - [`sym3`]: `Sym3`, the 3D metric (nalgebra eigen).
+//! - [`sym3`]: `Sym3`, the 3D metric; `eigen3`, its closed-form eigen-decomposition (nalgebra's
+//!   iterative one as the fallback).
 //! - [`levelset`]: the geometric metric of 004 eq. (6) and [`MetricBounds`].
 //! - [`conformity`](mod@conformity): edge lengths, `Q_ani` and mean ratio of a triangle or
 //!   tetrahedral mesh in a metric field (the measures of `anisomesh measure`).
@@ -24,6 +25,7 @@
 pub mod band;
 pub mod complexity;
 pub mod conformity;
+pub(crate) mod eigen3;
 pub mod field;
 pub mod from_hessian;
 pub mod gradation;

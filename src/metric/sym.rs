@@ -111,14 +111,7 @@ pub trait SymTensor<const D: usize>:
     /// `0 < hmin <= hmax` and `max_aniso >= 1`.
     fn bound(&self, hmin: f64, hmax: f64, max_aniso: f64) -> Self {
         let (l, v) = self.eigen();
-        let lo = 1.0 / (hmax * hmax);
-        let hi = 1.0 / (hmin * hmin);
-        let mut l = l.map(|x| if x.is_nan() { x } else { x.max(lo).min(hi) });
-        let floor = l[D - 1] / (max_aniso * max_aniso);
-        for x in &mut l[..D - 1] {
-            *x = x.max(floor);
-        }
-        Self::from_eigen(l, v)
+        Self::from_eigen(bound_eigenvalues(l, hmin, hmax, max_aniso), v)
     }
 
     /// `A ∩ B` by simultaneous reduction (004 §3.5): [`super::intersect()`].
@@ -145,6 +138,25 @@ pub trait SymTensor<const D: usize>:
         }
         Ok(())
     }
+}
+
+/// The eigenvalues of [`SymTensor::bound`] from the ascending eigenvalues `l`: clamped to
+/// `[1/hmax², 1/hmin²]`, then all but the largest raised to at least `λ_max / max_aniso²` (NaN
+/// stays NaN).
+pub fn bound_eigenvalues<const D: usize>(
+    l: [f64; D],
+    hmin: f64,
+    hmax: f64,
+    max_aniso: f64,
+) -> [f64; D] {
+    let lo = 1.0 / (hmax * hmax);
+    let hi = 1.0 / (hmin * hmin);
+    let mut l = l.map(|x| if x.is_nan() { x } else { x.max(lo).min(hi) });
+    let floor = l[D - 1] / (max_aniso * max_aniso);
+    for x in &mut l[..D - 1] {
+        *x = x.max(floor);
+    }
+    l
 }
 
 impl SymTensor<2> for Sym2 {

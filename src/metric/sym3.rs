@@ -1,15 +1,17 @@
 //! `Sym3`: a symmetric 3x3 tensor, the storage type of a 3D metric (6 numbers), for `mesh3` and
 //! the 3D surface example of 004 §5.
 //!
-//! The eigen-decomposition uses nalgebra's `SymmetricEigen` (implicit QR on the tridiagonal form,
-//! ~0.5 µs) rather than the trigonometric closed form, which loses accuracy at high anisotropy.
-//! Measured accuracy (test `eigen_accuracy_at_high_anisotropy`, random rotations of
-//! `diag(1, λ_mid, λ_max)` built in floating point): the reconstruction is exact to ~1e-16 `‖M‖`
-//! and the eigenvectors orthonormal to ~1e-15; each eigenvalue is accurate to ~`ε ‖M‖` in
-//! absolute terms, so the smallest one has a relative error of up to 3e-10 at eigenvalue ratio 1e6
-//! (size ratio 1e3) and up to 2e-4 at ratio 1e12 (size ratio 1e6). The latter is the limit set by
-//! rounding the six stored entries (a perturbation of `ε ‖M‖` moves `λ_min` by as much), not by
-//! the algorithm.
+//! The eigen-decomposition is the closed form of [`super::eigen3`] (the isolated eigenvalue from
+//! the trigonometric formula, the other two by one Jacobi rotation in its orthogonal complement),
+//! checked by its residual, with nalgebra's `SymmetricEigen` (implicit QR on the tridiagonal
+//! form) as the fallback; the closed form takes half the time (printed by the `eigen3` test). Measured accuracy (tests
+//! `eigen_accuracy_at_high_anisotropy` here and `closed_form_accuracy_random_and_anisotropic` in
+//! `eigen3`, random rotations of spectra with ratios up to 1e12 and nearly equal pairs): the
+//! residual `‖AV − VΛ‖` is within 1e-15 `‖A‖` and the eigenvectors orthonormal to ~1e-15; each
+//! eigenvalue is accurate to ~`ε ‖A‖` in absolute terms, so the smallest one has a relative error
+//! of up to ~2e-10 at eigenvalue ratio 1e6 (size ratio 1e3) and up to ~3e-4 at ratio 1e12 (size
+//! ratio 1e6), as for the iterative solver. The latter is the limit set by rounding the six stored
+//! entries (a perturbation of `ε ‖A‖` moves `λ_min` by as much), not by the algorithm.
 //!
 //! The operations mirror [`super::Sym2`] (both implement [`super::SymTensor`]); bounding and
 //! intersection by simultaneous reduction (004 §3.5) are the generic ones written once for both.
@@ -165,22 +167,40 @@ impl Sym3 {
         )
     }
 
-    /// Eigenvalues ascending and the matching orthonormal eigenvectors (nalgebra
-    /// `SymmetricEigen`; see the module documentation for the accuracy). A non-finite input gives
+    /// Eigenvalues ascending and the matching orthonormal eigenvectors: the closed form of
+    /// [`super::eigen3`] when it passes its residual check, otherwise nalgebra's
+    /// `SymmetricEigen` (see the module documentation for the accuracy). A non-finite input gives
     /// NaN eigenvalues (never a hang or a panic).
     pub fn eigen(&self) -> ([f64; 3], [DVec3; 3]) {
+        if !self.is_finite() {
+            return ([f64::NAN; 3], [DVec3::X, DVec3::Y, DVec3::Z]);
+        }
+        if self.xy == 0.0 && self.xz == 0.0 && self.yz == 0.0 {
+            return self.eigen_diagonal();
+        }
+        super::eigen3::eigen_closed_form(self).unwrap_or_else(|| self.eigen_iterative())
+    }
+
+    /// The eigen-decomposition of a diagonal tensor: its entries sorted, with the exact axes.
+    fn eigen_diagonal(&self) -> ([f64; 3], [DVec3; 3]) {
+        let mut idx = [
+            (self.xx, DVec3::X),
+            (self.yy, DVec3::Y),
+            (self.zz, DVec3::Z),
+        ];
+        idx.sort_by(|a, b| a.0.total_cmp(&b.0));
+        (idx.map(|x| x.0), idx.map(|x| x.1))
+    }
+
+    /// [`Sym3::eigen`] by nalgebra's `SymmetricEigen` alone (implicit QR; the reference and the
+    /// fallback of the closed form).
+    pub fn eigen_iterative(&self) -> ([f64; 3], [DVec3; 3]) {
         let nan = ([f64::NAN; 3], [DVec3::X, DVec3::Y, DVec3::Z]);
         if !self.is_finite() {
             return nan;
         }
         if self.xy == 0.0 && self.xz == 0.0 && self.yz == 0.0 {
-            let mut idx = [
-                (self.xx, DVec3::X),
-                (self.yy, DVec3::Y),
-                (self.zz, DVec3::Z),
-            ];
-            idx.sort_by(|a, b| a.0.total_cmp(&b.0));
-            return (idx.map(|x| x.0), idx.map(|x| x.1));
+            return self.eigen_diagonal();
         }
         let Some(e) = SymmetricEigen::try_new(self.to_matrix(), f64::EPSILON, 10_000) else {
             return nan;

@@ -32,7 +32,16 @@ fn out_of_range(ctx: &Ctx<'_>, p: DVec3, m: &Sym3, nb: &[u32]) -> usize {
 /// ([`Ctx::quality_of`]) and in the vertex metric of largest determinant (the UGAWG form,
 /// [`crate::metric::conformity::mean_ratio`]), so that a repaired element is good in both.
 fn rating(ctx: &Ctx<'_>, t: [u32; 4], moved: Option<(u32, DVec3, &Sym3)>) -> f64 {
+    rating_above(ctx, t, moved, f64::NEG_INFINITY)
+}
+
+/// [`rating`], or the first of its two mean ratios when that is already at most `floor` (the
+/// rating is then at most `floor` too).
+fn rating_above(ctx: &Ctx<'_>, t: [u32; 4], moved: Option<(u32, DVec3, &Sym3)>, floor: f64) -> f64 {
     let q = ctx.quality_of(t, moved);
+    if q <= floor {
+        return q;
+    }
     let mut pts = [DVec3::ZERO; 4];
     let mut big = Sym3::default();
     let mut det = f64::NEG_INFINITY;
@@ -60,7 +69,9 @@ fn ball_rating_above(
     floor: f64,
     first: &mut usize,
 ) -> Option<f64> {
-    ctx.ball_min_above(v, floor, first, |t| rating(ctx, t, Some((v, p, m))))
+    ctx.ball_min_above(v, floor, first, |t| {
+        rating_above(ctx, t, Some((v, p, m)), floor)
+    })
 }
 
 /// Compass search on the worst quality of the ball of `v` (see the module docs); returns

@@ -17,6 +17,7 @@ use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::levelset::{enclosed_measure, interface_measure, Normalized, Shape};
 use crate::mesh3::{EditMesh3, Mesh3};
+use crate::metric::sym::bound_eigenvalues;
 use crate::metric::{geometric_metric, Sym3};
 
 mod cycle3;
@@ -159,23 +160,25 @@ impl<'a> Seen3<'a> {
 /// `∇u ∇uᵀ / hmin² + |D²u| / ε` where `|u| < band`; outside, the same sizes grown linearly
 /// with the distance, `h ← min(hmax, h + grade (|u| − band))`.
 pub fn level_set_metric3(lm: &LevelSetMetric, u: f64, grad: DVec3, hess: &Sym3) -> Sym3 {
-    let b = lm.bounds();
-    let mut m = b.apply(&geometric_metric(grad, hess, lm.hmin, lm.eps));
+    // One decomposition of the unbounded metric serves the bounds, the isotropic option and the
+    // growth outside the band (they all keep the eigenvectors).
+    let (l, mut v) = geometric_metric(grad, hess, lm.hmin, lm.eps).eigen();
+    let mut l = bound_eigenvalues(l, lm.hmin, lm.hmax, lm.max_aniso);
     if lm.isotropic {
-        let (l, _) = m.eigen();
-        m = Sym3::iso(1.0 / l.iter().fold(0.0f64, |a, &x| a.max(x)).sqrt());
+        l = [l[2]; 3];
+        v = [DVec3::X, DVec3::Y, DVec3::Z];
     }
     let d = u.abs() - lm.band;
     if d > 0.0 {
         if !lm.grade.is_finite() {
             return Sym3::iso(lm.hmax);
         }
-        m = m.map_eigen(|l| {
+        l = l.map(|l| {
             let h = (1.0 / l.sqrt() + lm.grade * d).min(lm.hmax);
             1.0 / (h * h)
         });
     }
-    m
+    Sym3::from_eigen(l, v)
 }
 
 /// The live vertices of `mesh`.
