@@ -1,7 +1,7 @@
 //! `Sym3`: a symmetric 3x3 tensor, the storage type of a 3D metric (6 numbers), for `mesh3` and
 //! the 3D surface example of 004 §5.
 //!
-//! The eigen-decomposition is the closed form of [`super::eigen3`] (the isolated eigenvalue from
+//! The eigen-decomposition is the closed form of `metric::eigen3` (the isolated eigenvalue from
 //! the trigonometric formula, the other two by one Jacobi rotation in its orthogonal complement),
 //! checked by its residual, with nalgebra's `SymmetricEigen` (implicit QR on the tridiagonal
 //! form) as the fallback; the closed form takes half the time (printed by the `eigen3` test). Measured accuracy (tests
@@ -168,7 +168,7 @@ impl Sym3 {
     }
 
     /// Eigenvalues ascending and the matching orthonormal eigenvectors: the closed form of
-    /// [`super::eigen3`] when it passes its residual check, otherwise nalgebra's
+    /// `metric::eigen3` when it passes its residual check, otherwise nalgebra's
     /// `SymmetricEigen` (see the module documentation for the accuracy). A non-finite input gives
     /// NaN eigenvalues (never a hang or a panic).
     pub fn eigen(&self) -> ([f64; 3], [DVec3; 3]) {

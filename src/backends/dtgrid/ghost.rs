@@ -91,7 +91,7 @@ impl GhostRows {
     /// The outside cells of the band `nb` with the weights `w` of the band field `phi`.
     /// Ghost nodes may lie outside the grid (they are only positions).
     /// Error: [`Error::InvalidInput`] when a ghost node has no band cells to extrapolate from
-    /// (see [`extrapolation`]).
+    /// (see `extrapolation`).
     pub fn new<B: Band<Coord = C3>>(
         lat: &Lattice,
         nb: &NarrowBand<B>,
