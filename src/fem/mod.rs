@@ -15,6 +15,7 @@
 //! - [`solve`]: PCG (Jacobi, IC(0)) and sparse direct solves (faer Cholesky and LU).
 
 pub mod assembly;
+pub mod bicgstab;
 pub mod csr;
 pub mod dirichlet;
 pub mod lagrange;

@@ -159,73 +159,7 @@ pub fn solve_dirichlet_with(
 /// guess in `x`; returns the iterations.
 /// Errors: as [`solve_all`] (also on a breakdown of BiCGStab).
 pub fn solve_general(a: &Csr, b: &[f64], x: &mut [f64]) -> Result<usize> {
-    use crate::fem::csr::{dot, norm};
-    let o = cg_options();
-    let n = b.len();
-    let d = a.diagonal();
-    let precond = |v: &[f64], out: &mut [f64]| {
-        out.iter_mut()
-            .zip(v)
-            .zip(&d)
-            .for_each(|((o, v), d)| *o = v / d)
-    };
-    let mut r = vec![0.0; n];
-    a.matvec(x, &mut r);
-    r.iter_mut().zip(b).for_each(|(r, b)| *r = b - *r);
-    let r0 = r.clone();
-    let tol = (o.rtol * norm(b)).max(o.atol);
-    let (mut rho, mut alpha, mut omega) = (1.0, 1.0, 1.0);
-    let (mut p, mut v) = (vec![0.0; n], vec![0.0; n]);
-    let (mut ph, mut s, mut sh, mut t) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut rep = crate::fem::CgReport {
-        residual: norm(&r),
-        ..Default::default()
-    };
-    while rep.iterations < o.max_iter {
-        if rep.residual <= tol {
-            rep.converged = true;
-            break;
-        }
-        rep.iterations += 1;
-        let rho_new = dot(&r0, &r);
-        if rho_new == 0.0 || omega == 0.0 {
-            break;
-        }
-        let beta = rho_new / rho * (alpha / omega);
-        rho = rho_new;
-        p.iter_mut()
-            .zip(&r)
-            .zip(&v)
-            .for_each(|((p, r), v)| *p = r + beta * (*p - omega * v));
-        precond(&p, &mut ph);
-        a.matvec(&ph, &mut v);
-        let r0v = dot(&r0, &v);
-        if r0v == 0.0 {
-            break;
-        }
-        alpha = rho / r0v;
-        s.iter_mut()
-            .zip(&r)
-            .zip(&v)
-            .for_each(|((s, r), v)| *s = r - alpha * v);
-        if norm(&s) <= tol {
-            x.iter_mut().zip(&ph).for_each(|(x, p)| *x += alpha * p);
-            rep.residual = norm(&s);
-            continue;
-        }
-        precond(&s, &mut sh);
-        a.matvec(&sh, &mut t);
-        let tt = dot(&t, &t);
-        omega = if tt > 0.0 { dot(&t, &s) / tt } else { 0.0 };
-        x.iter_mut()
-            .zip(ph.iter().zip(&sh))
-            .for_each(|(x, (p, s))| *x += alpha * p + omega * s);
-        r.iter_mut()
-            .zip(s.iter().zip(&t))
-            .for_each(|(r, (s, t))| *r = s - omega * t);
-        rep.residual = norm(&r);
-    }
-    rep.residual /= norm(b).max(f64::MIN_POSITIVE);
+    let rep = crate::fem::bicgstab::bicgstab(a, b, x, &cg_options())?;
     finish(rep, x)
 }
 
